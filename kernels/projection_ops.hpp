@@ -1,0 +1,94 @@
+#pragma once
+// Discrete divergence D (nodes -> cells) and gradient G (cells -> nodes) of the
+// semi-staggered grid (shared/paper/NUMERICS.md, "Projection").
+//   (D u)_c   = sum_d 1/(4 h_d) sum_{corners n of c} s_d(c,n) u_d(n)
+//   (G p)_n,d = -1/(w_n 4 h_d) sum_{existing cells c around n} s_d(c,n) p_c
+// s_d = +1 when n is the high corner of c along d, -1 when the low one.
+// w_n is the node's share of a dual cell (1/2 per non-periodic boundary face it
+// sits on), so G = -W^{-1} D^T and D B G is symmetric; a missing outside cell
+// stands for p = 0, i.e. the outflow pressure (p is stored relative to it).
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "core/index_space.hpp"
+
+namespace voigt {
+
+// Everything a projection kernel needs, by value (no `this` in device lambdas).
+struct GridGeom {
+  int n[3], c0[3], ng;
+  bool per[3];
+  double h[3];
+  explicit GridGeom(const Grid& g) : ng(g.ng) {
+    for (int d = 0; d < 3; ++d) {
+      n[d] = g.n[d];
+      c0[d] = g.c0[d];
+      per[d] = g.periodic[d];
+      h[d] = g.h[d];
+    }
+  }
+  KOKKOS_INLINE_FUNCTION int glob(int d, int l) const { return l - ng + c0[d]; }
+  // Node weight w_n from local node indices.
+  KOKKOS_INLINE_FUNCTION double nodeWeight(int i, int j, int k) const {
+    const int l[3] = {i, j, k};
+    double w = 1;
+    for (int d = 0; d < 3; ++d) {
+      const int gi = glob(d, l[d]);
+      if (!per[d] && (gi == 0 || gi == n[d])) w *= 0.5;
+    }
+    return w;
+  }
+  // Does the cell with local index l along axis d exist (not beyond a wall)?
+  KOKKOS_INLINE_FUNCTION bool cellExists(int d, int l) const {
+    const int gi = glob(d, l);
+    return per[d] || (gi >= 0 && gi < n[d]);
+  }
+};
+
+// div = D u over the given cells.
+inline void divergence(const Grid& g, const VecField& u, const Field& div, Range3 cells) {
+  GridGeom G(g);
+  auto ux = u.c[0], uy = u.c[1], uz = u.c[2];
+  Kokkos::parallel_for(
+      "divergence", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        double s[3] = {0, 0, 0};
+        for (int c = 0; c < 8; ++c) {
+          const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
+          s[0] += (a ? 1 : -1) * ux(i + a, j + b, k + e);
+          s[1] += (b ? 1 : -1) * uy(i + a, j + b, k + e);
+          s[2] += (e ? 1 : -1) * uz(i + a, j + b, k + e);
+        }
+        div(i, j, k) = s[0] / (4 * G.h[0]) + s[1] / (4 * G.h[1]) + s[2] / (4 * G.h[2]);
+      });
+}
+
+// (G p)_n,d at one node.
+KOKKOS_INLINE_FUNCTION void nodeGradient(const GridGeom& G, const Field& p, int i, int j, int k,
+                                         double grad[3]) {
+  grad[0] = grad[1] = grad[2] = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1; // 1: cell on the high side of the node
+    const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + e;
+    if (!G.cellExists(0, ci) || !G.cellExists(1, cj) || !G.cellExists(2, ck)) continue;
+    const double v = p(ci, cj, ck);
+    grad[0] += a ? v : -v;
+    grad[1] += b ? v : -v;
+    grad[2] += e ? v : -v;
+  }
+  const double w = G.nodeWeight(i, j, k);
+  for (int d = 0; d < 3; ++d) grad[d] /= (4 * G.h[d] * w);
+}
+
+// u_d -= scale * coef_d * (G p)_d at the given nodes. coef_d = 0 at prescribed
+// components (no correction there), 1/rho elsewhere.
+inline void subtractGradient(const Grid& g, const Field& p, const VecField& coef, double scale,
+                             const VecField& u, Range3 nodes) {
+  GridGeom G(g);
+  Kokkos::parallel_for(
+      "subtract_gradient", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        double gr[3];
+        nodeGradient(G, p, i, j, k, gr);
+        for (int d = 0; d < 3; ++d) u.c[d](i, j, k) -= scale * coef.c[d](i, j, k) * gr[d];
+      });
+}
+
+} // namespace voigt

@@ -1,0 +1,57 @@
+#pragma once
+// Global reductions over owned index ranges (Kokkos reduce + MPI_Allreduce).
+#include <mpi.h>
+
+#include "core/field.hpp"
+#include "core/index_space.hpp"
+#include "kernels/projection_ops.hpp"
+
+namespace voigt {
+
+inline double globalMaxAbs(const Grid& g, const Field& f, Range3 r) {
+  double m = 0;
+  Kokkos::parallel_reduce(
+      "max_abs", r.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+        const double v = f(i, j, k) < 0 ? -f(i, j, k) : f(i, j, k);
+        // NaN must win: a comparison with NaN is false, so test it explicitly.
+        if (v > acc || v != v) acc = v;
+      },
+      Kokkos::Max<double>(m));
+  double out = m;
+  MPI_Allreduce(&m, &out, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  return out;
+}
+
+inline double globalSum(const Grid& g, double local) {
+  double out = 0;
+  MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_SUM, g.comm);
+  return out;
+}
+
+// Kinetic energy 0.5 sum rho_n |u_n|^2 w_n dV over owned nodes (dual-cell volumes).
+inline double kineticEnergy(const Grid& g, const VecField& u, const Field& rhoCell) {
+  GridGeom G(g);
+  const double vol = g.cellVolume();
+  double e = 0;
+  Kokkos::parallel_reduce(
+      "kinetic_energy", nodeRange(g).policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+        double rho = 0;
+        int n = 0;
+        for (int c = 0; c < 8; ++c) {
+          const int ci = i - 1 + (c & 1), cj = j - 1 + ((c >> 1) & 1), ck = k - 1 + ((c >> 2) & 1);
+          if (!G.cellExists(0, ci) || !G.cellExists(1, cj) || !G.cellExists(2, ck)) continue;
+          rho += rhoCell(ci, cj, ck);
+          ++n;
+        }
+        rho /= n;
+        const double u2 = u.c[0](i, j, k) * u.c[0](i, j, k) + u.c[1](i, j, k) * u.c[1](i, j, k) +
+                          u.c[2](i, j, k) * u.c[2](i, j, k);
+        acc += 0.5 * rho * u2 * G.nodeWeight(i, j, k) * vol;
+      },
+      e);
+  return globalSum(g, e);
+}
+
+} // namespace voigt

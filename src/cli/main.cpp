@@ -1,0 +1,127 @@
+// voigt: run | check | info. Runs unchanged under mpirun.
+#include <CLI/CLI.hpp>
+#include <Kokkos_Core.hpp>
+#include <mpi.h>
+
+#include <iostream>
+
+#include "app/simulation.hpp"
+#include "scene/load.hpp"
+#include "scene/reader.hpp"
+
+using namespace voigt;
+
+namespace {
+int rankOf() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+Scene load(const std::string& path, const std::vector<std::string>& sets) {
+  LoadOptions lo;
+  lo.overrides = sets;
+  lo.knownEffects = knownEffectNames();
+  lo.extraSections = effectSections();
+  return loadScene(path, lo);
+}
+
+int info() {
+  if (rankOf() == 0) {
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    std::cout << "voigt " << VOIGT_VERSION << "\n";
+    std::cout << "kokkos execution space: " << Kokkos::DefaultExecutionSpace::name()
+              << " (concurrency " << Kokkos::DefaultExecutionSpace().concurrency() << ")\n";
+    std::cout << "mpi ranks: " << size << "\n";
+    std::cout << "effects:";
+    for (auto& e : effectRegistry()) std::cout << " " << e.name;
+    std::cout << "\n";
+  }
+  return 0;
+}
+
+int check(const Scene& scene) {
+  Simulation sim(scene, MPI_COMM_WORLD);
+  sim.initialize();
+  const DtLimit dt = sim.stableDt();
+  if (rankOf() == 0) {
+    std::cout << sim.describe();
+    if (scene.time.dt > 0)
+      std::cout << "time step  fixed " << scene.time.dt << " (stable limit " << dt.dt << ", " << dt.reason << ")\n";
+    else
+      std::cout << "time step  adaptive, first dt = " << dt.dt << " (" << dt.reason << ")\n";
+    if (scene.time.dt > dt.dt)
+      std::cout << "warning    fixed dt exceeds the stable limit\n";
+  }
+  return 0;
+}
+
+int run(const Scene& scene, RunOptions opt) {
+  Simulation sim(scene, MPI_COMM_WORLD, opt);
+  const RunResult r = sim.run();
+  if (rankOf() == 0) {
+    std::cout << "done: " << r.steps << " steps to t = " << r.simTime << " in " << r.wallSeconds << " s ("
+              << r.cellStepsPerSecond << " cell-steps/s)\n";
+    if (!opt.outDir.empty())
+      std::cout << "output: " << opt.outDir << "/fields.xdmf (open in ParaView: File > Open, choose the "
+                << "Xdmf3 reader), summary.json, timeseries.csv\n";
+  }
+  return 0;
+}
+} // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int code = 0;
+  {
+    Kokkos::ScopeGuard kokkos(argc, argv);
+    CLI::App app{"Voigt: fluids and elastic solids on one Eulerian grid"};
+    app.require_subcommand(1);
+    std::string scenePath, outDir;
+    std::vector<std::string> sets;
+    long steps = -1;
+    double endTime = -1;
+    bool overwrite = false;
+    auto* runCmd = app.add_subcommand("run", "run a scene");
+    runCmd->add_option("scene", scenePath, "scene YAML file")->required();
+    runCmd->add_option("-o,--output", outDir, "output directory (default output/<scene name>)");
+    runCmd->add_option("--set", sets, "override a scene value: a.b.c=value");
+    runCmd->add_option("--steps", steps, "stop after N steps");
+    runCmd->add_option("--end-time", endTime, "stop at this simulated time");
+    runCmd->add_flag("--overwrite", overwrite, "replace an existing output directory");
+    auto* checkCmd = app.add_subcommand("check", "validate a scene and print what a run would do");
+    checkCmd->add_option("scene", scenePath, "scene YAML file")->required();
+    checkCmd->add_option("--set", sets, "override a scene value: a.b.c=value");
+    app.add_subcommand("info", "version, Kokkos backend, MPI ranks");
+    try {
+      app.parse(argc, argv);
+      if (app.got_subcommand("info")) {
+        code = info();
+      } else {
+        Scene scene = load(scenePath, sets);
+        if (app.got_subcommand("check")) {
+          code = check(scene);
+        } else {
+          RunOptions opt;
+          opt.outDir = outDir.empty() ? "output/" + scene.name : outDir;
+          opt.overwrite = overwrite;
+          opt.maxSteps = steps;
+          opt.endTime = endTime;
+          code = run(scene, opt);
+        }
+      }
+    } catch (const CLI::ParseError& e) {
+      code = rankOf() == 0 ? app.exit(e) : 2;
+      if (code == 0 && !e.get_exit_code()) code = 0;
+    } catch (const SceneError& e) {
+      if (rankOf() == 0) std::cerr << "error: " << e.what() << "\n";
+      code = 2;
+    } catch (const std::exception& e) {
+      std::cerr << "error (rank " << rankOf() << "): " << e.what() << "\n";
+      code = 1;
+    }
+  }
+  MPI_Finalize();
+  return code;
+}

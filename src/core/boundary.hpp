@@ -1,0 +1,29 @@
+#pragma once
+// Boundary conditions on the node velocity.
+// fixmask bit d set = velocity component d is prescribed at that node (walls,
+// inflow, obstacles); fixval holds the prescribed value. Prescribed components
+// get no pressure correction (NUMERICS.md) and are re-imposed after each update.
+#include <vector>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "core/index_space.hpp"
+#include "scene/scene.hpp"
+
+namespace voigt {
+
+// Face masks from the scene's boundary conditions, over owned and ghost nodes.
+void buildFaceMask(const Grid& g, const Scene& s, const IntField& mask, const VecField& val);
+// Adds the obstacles (all components, their velocity) to the mask.
+void addObstacleMask(const Grid& g, const std::vector<Obstacle>& obs, const IntField& mask,
+                     const VecField& val);
+// u = val where prescribed, over the given nodes.
+void applyFixed(const IntField& mask, const VecField& val, const VecField& u, Range3 nodes);
+// Ghost nodes beyond physical faces, for the MUSCL stencil: odd reflection about
+// the boundary value for prescribed components, even for free ones (outflow,
+// slip tangential). Call after the halo exchange.
+void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u);
+// Ghost cells beyond physical faces by even reflection (zero normal gradient).
+void fillCellGhostsEven(const Grid& g, const Field& f);
+
+} // namespace voigt

@@ -1,0 +1,61 @@
+#pragma once
+// Field storage. Every field is a Kokkos View over the local index space of
+// grid.hpp (owned + ghosts), LayoutLeft so x is fastest, as in the HDF5 files.
+#include <Kokkos_Core.hpp>
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace voigt {
+
+using ExecSpace = Kokkos::DefaultExecutionSpace;
+using MemSpace = ExecSpace::memory_space;
+using Field = Kokkos::View<double***, Kokkos::LayoutLeft, MemSpace>;
+using IntField = Kokkos::View<int***, Kokkos::LayoutLeft, MemSpace>;
+
+struct VecField {
+  Field c[3];
+  KOKKOS_INLINE_FUNCTION double& operator()(int d, int i, int j, int k) const { return c[d](i, j, k); }
+};
+
+enum class Centring { Cell, Node };
+
+struct Grid;
+
+// Named, lazily allocated fields. Effects declare what they need; nothing else
+// is ever allocated (the brief: a field nobody asked for costs nothing).
+class FieldStore {
+ public:
+  struct Decl {
+    Centring centring;
+    int components; // 1 scalar, 3 vector
+    bool isInt;
+    std::string owner; // effect that asked for it first
+  };
+
+  void declare(const std::string& name, Centring c, int components, const std::string& owner,
+               bool isInt = false);
+  bool declared(const std::string& name) const { return decls_.count(name) > 0; }
+  const std::map<std::string, Decl>& decls() const { return decls_; }
+  // Bytes all declared fields take on this rank.
+  long long bytes(const Grid& g) const;
+
+  void allocate(const Grid& g); // allocate every declared field, zero-filled
+  Field scalar(const std::string& name) const;
+  VecField vector(const std::string& name) const;
+  IntField integer(const std::string& name) const;
+  bool allocated(const std::string& name) const;
+  std::vector<std::string> allocatedNames() const;
+
+ private:
+  std::map<std::string, Decl> decls_;
+  std::map<std::string, Field> scalars_;
+  std::map<std::string, VecField> vectors_;
+  std::map<std::string, IntField> ints_;
+};
+
+// Owned-index ranges as Kokkos policies (Cabana-style index spaces).
+using Policy3 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>;
+
+} // namespace voigt

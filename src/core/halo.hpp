@@ -1,0 +1,30 @@
+#pragma once
+// Ghost-layer exchange between neighbouring ranks (and periodic images).
+// Axis by axis, each pass over the full extent of the other axes, so edge and
+// corner ghosts arrive without diagonal messages. Physical faces are left to
+// the boundary conditions (boundary.hpp).
+#include <vector>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
+
+namespace voigt {
+
+class Halo {
+ public:
+  explicit Halo(const Grid& g) : g_(&g) {}
+  void exchange(const std::vector<Field>& fields);
+  void exchange(const VecField& v) { exchange(std::vector<Field>{v.c[0], v.c[1], v.c[2]}); }
+  void exchange(const Field& f) { exchange(std::vector<Field>{f}); }
+
+  // Totals since construction, for the cost model in perf/.
+  double seconds = 0;
+  long long bytes = 0;
+  long long messages = 0;
+
+ private:
+  const Grid* g_;
+  Kokkos::View<double*, MemSpace> sendLo_, sendHi_, recvLo_, recvHi_;
+};
+
+} // namespace voigt

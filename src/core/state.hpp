@@ -1,0 +1,41 @@
+#pragma once
+// Everything a time step reads and writes. Effects find their fields by name
+// in `fields`; nothing here is physics.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "core/halo.hpp"
+#include "scene/scene.hpp"
+
+namespace voigt {
+
+// A time-step limit and the reason, e.g. {2.1e-4, "advective CFL"}.
+struct DtLimit {
+  double dt = std::numeric_limits<double>::infinity();
+  std::string reason = "none";
+};
+
+struct State {
+  const Scene* scene = nullptr;
+  Grid grid;
+  FieldStore fields;
+  std::unique_ptr<Halo> halo;
+
+  double t = 0, dt = 0;
+  long step = 0;
+  std::string dtReason;
+  bool propertiesChanged = true; // set by whoever changes rho/mu; projection refills its matrix
+
+  // Velocity a Stress/Forces task evaluates and the acceleration it adds to.
+  VecField evalU, evalRhs;
+
+  // Scalar diagnostics of the last step (max divergence, energies, ...), and
+  // running counters, for summary.json and the time-series CSV.
+  std::map<std::string, double> diag;
+  std::map<std::string, double> counters;
+};
+
+} // namespace voigt

@@ -1,0 +1,46 @@
+#pragma once
+// An effect is one piece of physics a scene can list under `effects:`. It
+// declares its fields, reads its own scene section, registers tasks into the
+// pipeline's stages and may limit the time step. The core knows none of them.
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/pipeline.hpp"
+#include "core/state.hpp"
+
+namespace voigt {
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  virtual std::string name() const = 0;
+  virtual std::vector<std::string> dependsOn() const { return {}; }
+  // Setup order: lower first (navier_stokes builds the masks obstacles extend).
+  virtual int setupOrder() const { return 10; }
+  virtual void configure(const Scene&) {}
+  virtual void declareFields(FieldStore&) const {}
+  virtual void setup(State&) {}
+  virtual void registerTasks(Pipeline&) = 0;
+  virtual DtLimit dtLimit(const State&) const { return {}; }
+  virtual void summary(const State&, nlohmann::json&) const {}
+};
+
+struct EffectInfo {
+  std::string name, description;
+  std::string section; // top-level scene key this effect owns ("" for none)
+  std::function<std::unique_ptr<Effect>()> make;
+};
+
+// All built-in effects (effects/registry.cpp: one line per effect).
+const std::vector<EffectInfo>& effectRegistry();
+std::set<std::string> knownEffectNames();
+std::set<std::string> effectSections();
+// Instantiates the scene's effects, checks `requires`, sorts by setupOrder.
+std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene);
+
+} // namespace voigt

@@ -1,0 +1,34 @@
+// gravity: body force per unit mass, f/rho = g in Eq. (7).
+#include "core/index_space.hpp"
+#include "effects/effect.hpp"
+
+namespace voigt {
+
+namespace {
+class Gravity : public Effect {
+ public:
+  std::string name() const override { return "gravity"; }
+  std::vector<std::string> dependsOn() const override { return {"navier_stokes"}; }
+  void configure(const Scene& s) override { g_ = s.gravity; }
+  void registerTasks(Pipeline& p) override {
+    const Vec3 g = g_;
+    p.add(Stage::Forces, name(), "uniform body force g", [g](State& st) {
+      VecField rhs = st.evalRhs;
+      const double g0 = g[0], g1 = g[1], g2 = g[2];
+      Kokkos::parallel_for(
+          "gravity", nodeRange(st.grid).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+            rhs.c[0](i, j, k) += g0;
+            rhs.c[1](i, j, k) += g1;
+            rhs.c[2](i, j, k) += g2;
+          });
+    });
+  }
+
+ private:
+  Vec3 g_{0, 0, 0};
+};
+} // namespace
+
+std::unique_ptr<Effect> makeGravity() { return std::make_unique<Gravity>(); }
+
+} // namespace voigt

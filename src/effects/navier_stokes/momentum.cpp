@@ -1,0 +1,61 @@
+// Momentum predictor, Eq. (7):
+//   du/dt = R(u) = -[div(u u) - u div_h u] + (1/rho) div(tau) + f/rho - (1/rho) G p^n
+// integrated with SSP-RK2 (Heun):
+//   u1 = u^n + dt R(u^n);   u* = (u^n + u1 + dt R(u1)) / 2
+// then prescribed components are re-imposed. tau comes from the Stress stage
+// (viscous here; elasticity blends its own in, Eq. 9), f from the Forces stage.
+#include "core/boundary.hpp"
+#include "effects/navier_stokes/navier_stokes.hpp"
+
+namespace voigt {
+
+namespace {
+void refreshGhosts(State& st, const VecField& u) {
+  st.halo->exchange(u);
+  fillVelocityGhosts(st.grid, *st.scene, u);
+}
+} // namespace
+
+void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const VecField& rhs) {
+  const Grid& g = st.grid;
+  const Range3 nodes = nodeRange(g);
+  refreshGhosts(st, u);
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs.c[c], 0.0);
+  for (int c = 0; c < 3; ++c) addNodeAdvection(g, u.c[c], u, rhs.c[c], nodes, limiter_);
+  st.evalU = u;
+  st.evalRhs = rhs;
+  p.run(Stage::Stress, st);
+  VecField coef = st.fields.vector("proj_coef");
+  addStressDivergence(g, stressField(st.fields), coef, rhs, nodes);
+  subtractGradient(g, st.fields.scalar("pressure"), coef, 1.0, rhs, nodes);
+  p.run(Stage::Forces, st);
+}
+
+void NavierStokes::momentum(State& st, Pipeline& p) {
+  if (st.propertiesChanged) refreshCoefficients(st);
+  const Grid& g = st.grid;
+  const Range3 nodes = nodeRange(g);
+  VecField u = st.fields.vector("velocity"), u0 = st.fields.vector("velocity_old");
+  VecField rhs = st.fields.vector("acceleration");
+  IntField mask = st.fields.integer("fix_mask");
+  VecField val = st.fields.vector("fix_value");
+  const double dt = st.dt;
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(u0.c[c], u.c[c]);
+
+  evaluateRhs(st, p, u, rhs);
+  Kokkos::parallel_for(
+      "rk2_stage1", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        for (int c = 0; c < 3; ++c) u.c[c](i, j, k) += dt * rhs.c[c](i, j, k);
+      });
+  applyFixed(mask, val, u, nodes);
+
+  evaluateRhs(st, p, u, rhs);
+  Kokkos::parallel_for(
+      "rk2_stage2", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        for (int c = 0; c < 3; ++c)
+          u.c[c](i, j, k) = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
+      });
+  applyFixed(mask, val, u, nodes);
+}
+
+} // namespace voigt

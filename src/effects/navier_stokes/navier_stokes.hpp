@@ -1,0 +1,43 @@
+#pragma once
+// The navier_stokes effect: incompressible momentum on the semi-staggered grid,
+// Eq. (5)/(7)-(8). One file per stage: setup.cpp (fields, initial state),
+// momentum.cpp (predictor), projection.cpp (pressure correction).
+#include <memory>
+
+#include "effects/effect.hpp"
+#include "kernels/advection.hpp"
+#include "kernels/stress.hpp"
+#include "solvers/poisson.hpp"
+
+namespace voigt {
+
+class NavierStokes : public Effect {
+ public:
+  std::string name() const override { return "navier_stokes"; }
+  int setupOrder() const override { return 0; }
+  void configure(const Scene& s) override;
+  void declareFields(FieldStore& f) const override;
+  void setup(State& st) override;
+  void registerTasks(Pipeline& p) override;
+  DtLimit dtLimit(const State& st) const override;
+  void summary(const State& st, nlohmann::json& j) const override;
+
+  // Stages (public so tests can drive them one at a time).
+  void momentum(State& st, Pipeline& p);
+  void project(State& st);
+  void refreshCoefficients(State& st);
+
+ private:
+  void evaluateRhs(State& st, Pipeline& p, const VecField& u, const VecField& rhs);
+  void initialVelocity(State& st);
+
+  const Scene* scene_ = nullptr;
+  Limiter limiter_ = Limiter::MinMod;
+  std::unique_ptr<PoissonSolver> solver_;
+  Pipeline* pipeline_ = nullptr;
+  double pRef_ = 0; // outflow pressure: stored p is relative to it
+};
+
+SymTensorField stressField(const FieldStore& f);
+
+} // namespace voigt

@@ -1,0 +1,80 @@
+// Incremental pressure correction (paper, "Numerical methodology"):
+//   D B G dp = D u* / dt,  B = diag(1/rho) on free velocity components,
+//   u^{n+1} = u* - dt B G dp,   p^{n+1} = p^n + dp.
+// Exact operator: A = D B W^{-1} D^T (27-point), so D u^{n+1} equals dt times
+// the solver residual; approximate: the compact 7-point Laplacian (NUMERICS.md).
+#include <mpi.h>
+
+#include <algorithm>
+
+#include "core/boundary.hpp"
+#include "effects/navier_stokes/navier_stokes.hpp"
+#include "kernels/reductions.hpp"
+
+namespace voigt {
+
+// coef_d(n) = 0 where component d is prescribed, else 1/rho_n (mean of the
+// existing cells around the node).
+void NavierStokes::refreshCoefficients(State& st) {
+  const Grid& g = st.grid;
+  GridGeom G(g);
+  Field rho = st.fields.scalar("density");
+  IntField mask = st.fields.integer("fix_mask");
+  VecField coef = st.fields.vector("proj_coef");
+  st.halo->exchange(rho);
+  fillCellGhostsEven(g, rho);
+  Kokkos::parallel_for(
+      "projection_coef", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        double r = 0;
+        int n = 0;
+        for (int c = 0; c < 8; ++c) {
+          const int ci = i - 1 + (c & 1), cj = j - 1 + ((c >> 1) & 1), ck = k - 1 + ((c >> 2) & 1);
+          if (!G.cellExists(0, ci) || !G.cellExists(1, cj) || !G.cellExists(2, ck)) continue;
+          r += rho(ci, cj, ck);
+          ++n;
+        }
+        const double inv = n / r;
+        const int m = mask(i, j, k);
+        for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) = (m >> d) & 1 ? 0.0 : inv;
+      });
+  st.halo->exchange(coef);
+  solver_->setCoefficients(coef);
+  st.propertiesChanged = false;
+}
+
+void NavierStokes::project(State& st) {
+  const Grid& g = st.grid;
+  const double dt = st.dt;
+  VecField u = st.fields.vector("velocity"), coef = st.fields.vector("proj_coef");
+  Field p = st.fields.scalar("pressure"), dp = st.fields.scalar("pressure_increment");
+  Field rhs = st.fields.scalar("poisson_rhs"), div = st.fields.scalar("divergence");
+  const Range3 cells = cellRange(g);
+
+  st.halo->exchange(u);
+  divergence(g, u, div, cells);
+  Kokkos::parallel_for(
+      "poisson_rhs", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k) / dt; });
+  // dp of the previous step is the initial guess.
+  const PoissonStats s = solver_->solve(rhs, dp);
+  st.halo->exchange(dp);
+  subtractGradient(g, dp, coef, dt, u, nodeRange(g));
+  Kokkos::parallel_for(
+      "pressure_update", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) { p(i, j, k) += dp(i, j, k); });
+  st.halo->exchange(p);
+  st.halo->exchange(u);
+  fillVelocityGhosts(g, *st.scene, u);
+
+  divergence(g, u, div, cells);
+  st.diag["max_divergence"] = globalMaxAbs(g, div, cells);
+  st.diag["poisson_iterations"] = s.iterations;
+  st.diag["poisson_residual"] = s.relResidual;
+  st.diag["pressure_reference"] = pRef_;
+  auto& c = st.counters;
+  c["poisson_solves"] += 1;
+  c["poisson_iterations"] += s.iterations;
+  c["poisson_iterations_max"] = std::max(c["poisson_iterations_max"], double(s.iterations));
+  c["poisson_seconds"] += s.seconds;
+  if (!s.converged) c["poisson_unconverged"] += 1;
+}
+
+} // namespace voigt

@@ -1,0 +1,155 @@
+// navier_stokes set-up: fields, boundary masks, initial velocity and pressure.
+#include <cmath>
+
+#include "core/boundary.hpp"
+#include "effects/navier_stokes/navier_stokes.hpp"
+#include "kernels/reductions.hpp"
+#include "scene/reader.hpp"
+
+namespace voigt {
+
+std::unique_ptr<Effect> makeNavierStokes() { return std::make_unique<NavierStokes>(); }
+
+SymTensorField stressField(const FieldStore& f) {
+  const char* names[6] = {"tau_xx", "tau_yy", "tau_zz", "tau_xy", "tau_yz", "tau_zx"};
+  SymTensorField t;
+  for (int c = 0; c < 6; ++c) t.c[c] = f.scalar(names[c]);
+  return t;
+}
+
+void NavierStokes::configure(const Scene& s) {
+  scene_ = &s;
+  const std::string& l = s.advection.limiter;
+  limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
+                                                                                       : Limiter::MinMod;
+  bool haveOutflow = false;
+  for (auto& f : s.bc) {
+    if (f.type != BcType::Outflow) continue;
+    if (haveOutflow && f.pressure != pRef_)
+      throw SceneError(s.path + ": key 'boundaries': all outflow faces must share one pressure");
+    haveOutflow = true;
+    pRef_ = f.pressure;
+  }
+}
+
+void NavierStokes::declareFields(FieldStore& f) const {
+  const std::string me = name();
+  f.declare("velocity", Centring::Node, 3, me);
+  f.declare("velocity_old", Centring::Node, 3, me);
+  f.declare("acceleration", Centring::Node, 3, me);
+  f.declare("proj_coef", Centring::Node, 3, me);
+  f.declare("fix_value", Centring::Node, 3, me);
+  f.declare("fix_mask", Centring::Node, 1, me, true);
+  for (const char* n : {"tau_xx", "tau_yy", "tau_zz", "tau_xy", "tau_yz", "tau_zx"})
+    f.declare(n, Centring::Cell, 1, me);
+  for (const char* n : {"pressure", "pressure_increment", "poisson_rhs", "divergence", "density", "viscosity"})
+    f.declare(n, Centring::Cell, 1, me);
+}
+
+void NavierStokes::setup(State& st) {
+  const Grid& g = st.grid;
+  auto& F = st.fields;
+  buildFaceMask(g, *scene_, F.integer("fix_mask"), F.vector("fix_value"));
+  Kokkos::deep_copy(F.scalar("density"), scene_->fluidMaterial().density);
+  Kokkos::deep_copy(F.scalar("viscosity"), scene_->fluidMaterial().viscosity);
+  initialVelocity(st);
+  solver_ = makePoissonSolver(g, scene_->projection);
+  st.propertiesChanged = true;
+}
+
+void NavierStokes::initialVelocity(State& st) {
+  const Grid& g = st.grid;
+  const InitialCfg& ic = scene_->initial;
+  VecField u = st.fields.vector("velocity");
+  Field p = st.fields.scalar("pressure");
+  const int mode = ic.velocity == "uniform" ? 1 : ic.velocity == "taylor_green" ? 2
+                 : ic.velocity == "couette" ? 3 : ic.velocity == "poiseuille" ? 4 : 0;
+  const double A = ic.amplitude, rho = scene_->fluidMaterial().density, p0 = ic.pressure - pRef_;
+  const double U0 = ic.uniform[0], U1 = ic.uniform[1], U2 = ic.uniform[2];
+  const double kx = 2 * M_PI / (g.hi[0] - g.lo[0]), ky = 2 * M_PI / (g.hi[1] - g.lo[1]);
+  const double lo0 = g.lo[0], lo1 = g.lo[1], Ly = g.hi[1] - g.lo[1];
+  const double h0 = g.h[0], h1 = g.h[1];
+  const double wLo = scene_->bc[2].velocity[0], wHi = scene_->bc[3].velocity[0];
+  const int ng = g.ng, c00 = g.c0[0], c01 = g.c0[1];
+  Kokkos::parallel_for(
+      "initial_velocity", Policy3({0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        const double x = lo0 + (i - ng + c00) * h0, y = lo1 + (j - ng + c01) * h1;
+        const double xc = x + 0.5 * h0, yc = y + 0.5 * h1; // cell centre
+        double v[3] = {0, 0, 0}, pc = p0;
+        if (mode == 1) {
+          v[0] = U0; v[1] = U1; v[2] = U2;
+        } else if (mode == 2) { // Taylor-Green, exact Navier-Stokes solution in x-y
+          v[0] = A * std::sin(kx * (x - lo0)) * std::cos(ky * (y - lo1));
+          v[1] = -A * (kx / ky) * std::cos(kx * (x - lo0)) * std::sin(ky * (y - lo1));
+          pc += 0.25 * rho * A * A *
+                (std::cos(2 * kx * (xc - lo0)) + (kx * kx) / (ky * ky) * std::cos(2 * ky * (yc - lo1)));
+        } else if (mode == 3) {
+          v[0] = wLo + (wHi - wLo) * (y - lo1) / Ly;
+        } else if (mode == 4) {
+          v[0] = 4 * A * (y - lo1) * (Ly - (y - lo1)) / (Ly * Ly);
+        }
+        for (int c = 0; c < 3; ++c) u.c[c](i, j, k) = v[c];
+        p(i, j, k) = pc;
+      });
+  applyFixed(st.fields.integer("fix_mask"), st.fields.vector("fix_value"), u,
+             Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}});
+}
+
+void NavierStokes::registerTasks(Pipeline& p) {
+  pipeline_ = &p;
+  p.add(Stage::Momentum, name(), "SSP-RK2 predictor: MUSCL advection + stress + forces - grad p^n",
+        [this](State& st) { momentum(st, *pipeline_); });
+  p.add(Stage::Stress, name(), "viscous stress mu D at cells (Eq. 10)", [](State& st) {
+    viscousStress(st.grid, st.evalU, st.fields.scalar("viscosity"), stressField(st.fields),
+                  cellRange(st.grid, 1));
+  });
+  p.add(Stage::Projection, name(), std::string("incremental pressure correction, ") +
+        (scene_->projection.op == ProjectionCfg::Op::Exact ? "exact D(1/rho)G, 27-point"
+                                                           : "approximate 7-point Laplacian") +
+        ", CG + " + scene_->projection.preconditioner,
+        [this](State& st) { project(st); });
+}
+
+DtLimit NavierStokes::dtLimit(const State& st) const {
+  const Grid& g = st.grid;
+  VecField u = st.fields.vector("velocity");
+  DtLimit best;
+  double inv = 0;
+  for (int d = 0; d < 3; ++d) inv += globalMaxAbs(g, u.c[d], nodeRange(g)) / g.h[d];
+  if (inv > 0) best = {scene_->time.cfl / inv, "advective CFL"};
+  // Explicit viscous limit dt <= 1 / (2 nu sum 1/h^2) (NUMERICS.md, = h^2/(6 nu)).
+  Field mu = st.fields.scalar("viscosity"), rho = st.fields.scalar("density");
+  double nuMax = 0;
+  Kokkos::parallel_reduce(
+      "max_nu", cellRange(g).policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, double& m) {
+        const double nu = mu(i, j, k) / rho(i, j, k);
+        if (nu > m) m = nu;
+      },
+      Kokkos::Max<double>(nuMax));
+  double nuG = nuMax;
+  MPI_Allreduce(&nuMax, &nuG, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  if (nuG > 0) {
+    double s = 0;
+    for (int d = 0; d < 3; ++d) s += 1 / (g.h[d] * g.h[d]);
+    const double dv = scene_->time.viscousSafety / (2 * nuG * s);
+    if (dv < best.dt) best = {dv, "viscous"};
+  }
+  return best;
+}
+
+void NavierStokes::summary(const State& st, nlohmann::json& j) const {
+  auto& c = st.counters;
+  auto get = [&](const char* k) { auto it = c.find(k); return it == c.end() ? 0.0 : it->second; };
+  const double n = get("poisson_solves");
+  j["poisson"] = {{"solves", n},
+                  {"iterations_mean", n > 0 ? get("poisson_iterations") / n : 0},
+                  {"iterations_max", get("poisson_iterations_max")},
+                  {"unconverged", get("poisson_unconverged")},
+                  {"null_modes", solver_ ? solver_->nullModeCount() : 0},
+                  {"matrix_nonzeros", solver_ ? solver_->globalNonzeros() : 0},
+                  {"operator", scene_->projection.op == ProjectionCfg::Op::Exact ? "exact" : "approximate"}};
+}
+
+} // namespace voigt

@@ -1,0 +1,54 @@
+#include <algorithm>
+
+#include "effects/effect.hpp"
+#include "scene/reader.hpp"
+
+namespace voigt {
+
+std::unique_ptr<Effect> makeNavierStokes();
+std::unique_ptr<Effect> makeGravity();
+std::unique_ptr<Effect> makeObstacles();
+
+const std::vector<EffectInfo>& effectRegistry() {
+  static const std::vector<EffectInfo> reg = {
+      {"navier_stokes", "incompressible momentum: MUSCL advection, viscous stress, projection", "",
+       makeNavierStokes},
+      {"gravity", "body force from the scene's gravity vector", "", makeGravity},
+      {"obstacles", "fixed or moving rigid bodies: prescribed node velocities", "", makeObstacles},
+  };
+  return reg;
+}
+
+std::set<std::string> knownEffectNames() {
+  std::set<std::string> s;
+  for (auto& e : effectRegistry()) s.insert(e.name);
+  return s;
+}
+
+std::set<std::string> effectSections() {
+  std::set<std::string> s;
+  for (auto& e : effectRegistry())
+    if (!e.section.empty()) s.insert(e.section);
+  return s;
+}
+
+std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene) {
+  std::vector<std::unique_ptr<Effect>> out;
+  for (auto& name : scene.effects) {
+    auto it = std::find_if(effectRegistry().begin(), effectRegistry().end(),
+                           [&](const EffectInfo& e) { return e.name == name; });
+    if (it == effectRegistry().end()) throw SceneError(scene.path + ": unknown effect '" + name + "'");
+    out.push_back(it->make());
+  }
+  for (auto& e : out)
+    for (auto& need : e->dependsOn())
+      if (std::find(scene.effects.begin(), scene.effects.end(), need) == scene.effects.end())
+        throw SceneError(scene.path + ": key 'effects': effect '" + e->name() + "' needs '" + need +
+                         "' in the effects list");
+  std::stable_sort(out.begin(), out.end(),
+                   [](auto& a, auto& b) { return a->setupOrder() < b->setupOrder(); });
+  for (auto& e : out) e->configure(scene);
+  return out;
+}
+
+} // namespace voigt

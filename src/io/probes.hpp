@@ -1,0 +1,45 @@
+#pragma once
+// Point and line probes: trilinear samples of output fields appended to
+// DIR/probe_<name>.csv by rank 0.
+#include "io/fields_out.hpp"
+#include "scene/scene.hpp"
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace voigt {
+
+class ProbeSet {
+ public:
+  ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string dir);
+  // Collective over g.comm. Ghost layers must be exchanged first. Honours each
+  // probe's interval (0 = every call); force samples regardless.
+  void sample(double t, const std::vector<OutField>& available, bool force = false);
+
+ private:
+  // Per-axis stencil of one point: base local index and weight of index+1,
+  // for node and cell interpolation. Kept on the device for the kernels.
+  using IdxView = Kokkos::View<int* [9], MemSpace>;
+  using WView = Kokkos::View<double* [6], MemSpace>;
+  struct State {
+    Probe probe;
+    std::vector<Vec3> pts;   // all points of the probe (global)
+    std::vector<int> local;  // positions in pts this rank samples
+    IdxView idx;             // [owned point][node xyz, cell xyz, cell step xyz]
+    WView w;
+    std::unique_ptr<std::ofstream> out; // rank 0 only
+    bool headerDone = false;
+    bool sampled = false;
+    double next = 0;          // earliest time of the next interval sample
+  };
+  void writeRows(State& s, double t, const std::vector<const OutField*>& fs,
+                 const std::vector<double>& vals);
+
+  Grid g_;
+  std::string dir_;
+  std::vector<State> probes_;
+};
+
+} // namespace voigt

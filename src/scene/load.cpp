@@ -1,0 +1,357 @@
+#include "scene/load.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+namespace voigt {
+
+const char* toString(BcType t) {
+  static const char* const names[] = {"no_slip", "slip", "periodic", "inflow", "outflow"};
+  return names[int(t)];
+}
+
+namespace {
+
+template <class... A>
+std::string cat(const A&... a) {
+  std::ostringstream o;
+  (o << ... << a);
+  return o.str();
+}
+
+std::string str(const Vec3& v) { return cat("[", v[0], ", ", v[1], ", ", v[2], "]"); }
+
+template <class C>
+std::string join(const C& c) {
+  std::string out;
+  for (auto& s : c) out += (out.empty() ? "" : ", ") + std::string(s);
+  return out;
+}
+
+const char* const kFaces[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
+const char* const kCoreKeys[] = {"name", "domain", "boundaries", "time", "materials", "fluid", "effects",
+                                 "gravity", "obstacles", "initial", "projection", "advection", "output", "probes"};
+
+// Names end up in file names and CSV headers.
+bool isName(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '-';
+  });
+}
+
+Vec3 requireVec3(const Section& s, const std::string& key) {
+  if (!s.has(key)) s.fail(key, "is required");
+  return s.vec3(key, {});
+}
+
+// A required point that must lie in the (closed) domain box.
+Vec3 requirePoint(const Section& s, const std::string& key, const Scene& sc) {
+  Vec3 p = requireVec3(s, key);
+  for (int a = 0; a < 3; ++a)
+    if (p[a] < sc.lo[a] || p[a] > sc.hi[a])
+      s.fail(key, "point " + str(p) + " lies outside the domain " + str(sc.lo) + " - " + str(sc.hi));
+  return p;
+}
+
+void checkOrdered(const Section& s, const std::string& key, const Vec3& lo, const Vec3& hi) {
+  for (int a = 0; a < 3; ++a)
+    if (!(hi[a] > lo[a]))
+      s.fail(key, cat("must be greater than lo in every component (", "xyz"[a], ": ", hi[a], " <= ", lo[a], ")"));
+}
+
+// Applies one --set; returns the canonical path ("obstacles[0].radius") it set.
+std::string applyOne(YAML::Node& root, const std::string& a) {
+  auto bad = [&](const std::string& key, const std::string& msg) {
+    return SceneError("--set " + a + ": " + (key.empty() ? "" : "key '" + key + "': ") + msg);
+  };
+  size_t eq = a.find('=');
+  if (eq == std::string::npos || eq == 0) throw bad("", "expected KEY=VALUE, e.g. time.end=2");
+  std::string lhs = a.substr(0, eq), rhs = a.substr(eq + 1);
+  std::vector<std::string> parts;
+  std::stringstream ss(lhs);
+  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  if (lhs.back() == '.' || std::find(parts.begin(), parts.end(), "") != parts.end())
+    throw bad("", "empty key component in '" + lhs + "'");
+  if (rhs.find_first_not_of(" \t") == std::string::npos) throw bad(lhs, "missing value");
+  YAML::Node value, cur;
+  try {
+    value.reset(YAML::Load(rhs));
+  } catch (const YAML::Exception& e) {
+    throw bad(lhs, "value is not valid YAML: " + e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull()) root.reset(YAML::Node(YAML::NodeType::Map));
+  cur.reset(root);
+  std::string path;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const std::string& k = parts[i];
+    YAML::Node next; // a handle into the tree: assigning to it edits the tree
+    if (cur.IsSequence()) {
+      if (k.size() > 9 || !std::all_of(k.begin(), k.end(), [](unsigned char c) { return std::isdigit(c); }))
+        throw bad(path, "is a list: index it with a number, not '" + k + "'");
+      if (std::stoul(k) >= cur.size())
+        throw bad(path, cat("index ", k, " is out of range (the list has ", cur.size(), " entries)"));
+      path += "[" + k + "]";
+      next.reset(cur[std::stoul(k)]);
+    } else if (cur.IsMap() || cur.IsNull()) {
+      path += (path.empty() ? "" : ".") + k;
+      next.reset(cur[k]);
+      if (i + 1 < parts.size() && (!next.IsDefined() || next.IsNull())) next = YAML::Node(YAML::NodeType::Map);
+    } else {
+      throw bad(path, "is the value '" + cur.Scalar() + "', not a map or list");
+    }
+    if (i + 1 == parts.size()) next = value;
+    else cur.reset(next);
+  }
+  return path;
+}
+
+void readDomain(const Section& top, Scene& sc) {
+  if (!top.has("domain")) top.fail("domain", "is required");
+  Section d = top.section("domain");
+  sc.lo = d.vec3("lo", sc.lo);
+  sc.hi = d.vec3("hi", sc.hi);
+  sc.cells = d.ivec3("cells", sc.cells, 1, 4096);
+  sc.ranks = d.ivec3("ranks", sc.ranks, 0, 1 << 20);
+  checkOrdered(d, "hi", sc.lo, sc.hi);
+  d.finish();
+}
+
+void readFace(const Section& f, FaceBc& bc) {
+  static const std::vector<std::string> types{"no_slip", "slip", "periodic", "inflow", "outflow"};
+  std::string t = f.choice("type", "no_slip", types);
+  bc.type = BcType(std::find(types.begin(), types.end(), t) - types.begin());
+  bool hasV = f.has("velocity"), hasP = f.has("pressure");
+  bc.velocity = f.vec3("velocity", {0, 0, 0});
+  bc.pressure = f.number("pressure", 0);
+  if (hasV && bc.type != BcType::NoSlip && bc.type != BcType::Inflow)
+    f.fail("velocity", "is only allowed on no_slip (moving wall) and inflow faces");
+  if (hasP && bc.type != BcType::Outflow) f.fail("pressure", "is only allowed on outflow faces");
+  if (!hasV && bc.type == BcType::Inflow) f.fail("velocity", "is required on an inflow face");
+  f.finish();
+}
+
+void readBoundaries(const Section& top, Scene& sc) {
+  Section b = top.section("boundaries");
+  Section def = b.section("default");
+  FaceBc defBc;
+  readFace(def, defBc);
+  std::vector<Section> from; // the section each face's settings came from, for errors
+  bool given[6];
+  for (int f = 0; f < 6; ++f) {
+    given[f] = b.has(kFaces[f]);
+    from.push_back(given[f] ? b.section(kFaces[f]) : def);
+    sc.bc[f] = defBc;
+    if (given[f]) readFace(from[f], sc.bc[f]);
+  }
+  b.finish();
+  for (int f = 0; f < 6; ++f)
+    if (sc.bc[f].type == BcType::NoSlip && sc.bc[f].velocity[f / 2] != 0)
+      from[f].fail("velocity", cat("a wall moves tangentially: the ", "xyz"[f / 2], " component must be 0 on face ",
+                                   kFaces[f]));
+  for (int a = 0; a < 3; ++a) {
+    int lo = 2 * a, hi = lo + 1;
+    if ((sc.bc[lo].type == BcType::Periodic) == (sc.bc[hi].type == BcType::Periodic)) continue;
+    int bad = sc.bc[lo].type == BcType::Periodic ? lo : hi;
+    if (!given[bad]) bad = lo + hi - bad; // blame the face the user actually wrote
+    from[bad].fail("type", cat("periodic must be set on both ", kFaces[lo], " and ", kFaces[hi], " or neither (",
+                               kFaces[lo], " is ", toString(sc.bc[lo].type), ", ", kFaces[hi], " is ",
+                               toString(sc.bc[hi].type), ")"));
+  }
+}
+
+void readTime(const Section& top, TimeCfg& t) {
+  Section s = top.section("time");
+  t.endTime = s.number("end", t.endTime, Range::positive());
+  t.dt = s.number("dt", t.dt, Range::nonNegative());
+  t.cfl = s.number("cfl", t.cfl, {0, 1, true, false});
+  t.viscousSafety = s.number("viscous_safety", t.viscousSafety, {0, 1, true, false});
+  t.maxDt = s.number("max_dt", t.maxDt, Range::positive());
+  t.minDt = s.number("min_dt", t.minDt, Range::nonNegative());
+  t.maxSteps = s.integer("max_steps", t.maxSteps, 1, std::numeric_limits<long>::max());
+  if (t.maxDt < t.minDt) s.fail("max_dt", cat("must be >= min_dt (", t.minDt, ")"));
+  s.finish();
+}
+
+void readMaterials(const Section& top, Scene& sc) {
+  Section m = top.section("materials");
+  for (auto& name : m.keys()) {
+    if (!isName(name)) m.fail(name, "material names may only use letters, digits, '_' and '-'");
+    Section s = m.section(name);
+    Material& mat = sc.materials[name] = Material{name};
+    mat.density = s.number("density", mat.density, Range::positive());
+    mat.viscosity = s.number("viscosity", mat.viscosity, Range::nonNegative());
+    s.finish();
+  }
+  m.finish(); // duplicate names
+  if (top.has("materials") && sc.materials.empty()) top.fail("materials", "must define at least one material");
+  if (sc.materials.empty()) sc.materials["default"] = Material{"default"};
+  std::vector<std::string> names;
+  for (auto& kv : sc.materials) names.push_back(kv.first);
+  if (!top.has("fluid") && names.size() > 1) top.fail("fluid", "is required when more than one material is defined");
+  sc.fluid = top.string("fluid", names[0]);
+  if (!sc.materials.count(sc.fluid)) top.fail("fluid", "names no material (defined: " + join(names) + ")");
+}
+
+void readEffects(const Section& top, Scene& sc, const LoadOptions& opts) {
+  sc.effects = top.strings("effects", sc.effects);
+  for (size_t i = 0; i < sc.effects.size(); ++i) {
+    const std::string& e = sc.effects[i];
+    if (!opts.knownEffects.count(e))
+      top.failItem("effects", i, "unknown effect '" + e + "' (known: " + join(opts.knownEffects) + ")");
+    if (std::find(sc.effects.begin(), sc.effects.begin() + i, e) != sc.effects.begin() + i)
+      top.failItem("effects", i, "duplicate effect '" + e + "'");
+  }
+  sc.gravity = top.vec3("gravity", sc.gravity);
+}
+
+void readObstacles(const Section& top, Scene& sc) {
+  auto list = top.list("obstacles");
+  if (!list.empty() && std::find(sc.effects.begin(), sc.effects.end(), "obstacles") == sc.effects.end())
+    top.fail("obstacles", "obstacles are given but 'obstacles' is not listed in effects");
+  for (auto& o : list) {
+    if (!o.has("type")) o.fail("type", "is required (cylinder, box or sphere)");
+    std::string type = o.choice("type", "", {"cylinder", "box", "sphere"});
+    Obstacle ob;
+    ob.velocity = o.vec3("velocity", ob.velocity);
+    if (type == "box") {
+      ob.kind = Obstacle::Kind::Box;
+      ob.lo = requireVec3(o, "lo");
+      ob.hi = requireVec3(o, "hi");
+      checkOrdered(o, "hi", ob.lo, ob.hi);
+      for (int a = 0; a < 3; ++a) {
+        ob.center[a] = 0.5 * (ob.lo[a] + ob.hi[a]);
+        if (ob.hi[a] <= sc.lo[a] || ob.lo[a] >= sc.hi[a]) o.fail("lo", "the box lies entirely outside the domain");
+      }
+    } else {
+      ob.kind = type == "cylinder" ? Obstacle::Kind::Cylinder : Obstacle::Kind::Sphere;
+      ob.center = requirePoint(o, "center", sc);
+      ob.radius = o.requireNumber("radius", Range::positive());
+      if (type == "cylinder") ob.axis = o.choice("axis", "z", {"x", "y", "z"})[0] - 'x';
+    }
+    o.finish();
+    sc.obstacles.push_back(ob);
+  }
+}
+
+void readSettings(const Section& top, Scene& sc) {
+  Section i = top.section("initial");
+  auto& I = sc.initial;
+  I.velocity = i.choice("velocity", I.velocity, {"zero", "uniform", "taylor_green", "couette", "poiseuille"});
+  if (I.velocity == "uniform" && !i.has("uniform")) i.fail("uniform", "is required when velocity is 'uniform'");
+  I.uniform = i.vec3("uniform", I.uniform);
+  I.amplitude = i.number("amplitude", I.amplitude);
+  I.pressure = i.number("pressure", I.pressure);
+  i.finish();
+
+  Section p = top.section("projection");
+  auto& P = sc.projection;
+  P.op = p.choice("operator", "exact", {"exact", "approximate"}) == "exact" ? ProjectionCfg::Op::Exact
+                                                                          : ProjectionCfg::Op::Approximate;
+  P.tolerance = p.number("tolerance", P.tolerance, {0, 1, true, true});
+  P.maxIterations = int(p.integer("max_iterations", P.maxIterations, 1, 100000));
+  P.preconditioner = p.choice("preconditioner", P.preconditioner, {"sgs", "jacobi", "none", "multigrid"});
+  P.damping = p.number("damping", P.damping, {0, 2, true, true});
+  P.sweeps = int(p.integer("sweeps", P.sweeps, 1, 100));
+  p.finish();
+
+  Section a = top.section("advection");
+  sc.advection.limiter = a.choice("limiter", sc.advection.limiter, {"minmod", "van_leer", "mc", "none"});
+  a.finish();
+
+  Section o = top.section("output");
+  sc.output.interval = o.number("interval", sc.output.interval, Range::nonNegative());
+  sc.output.fields = o.strings("fields", sc.output.fields);
+  sc.output.enabled = o.boolean("enabled", sc.output.enabled);
+  o.finish();
+}
+
+void readProbes(const Section& top, Scene& sc) {
+  std::set<std::string> names;
+  for (auto& p : top.list("probes")) {
+    Probe pr;
+    if (!p.has("name")) p.fail("name", "is required");
+    pr.name = p.string("name", "");
+    if (!isName(pr.name)) p.fail("name", "must match [A-Za-z0-9_-]+ (got '" + pr.name + "')");
+    if (!names.insert(pr.name).second) p.fail("name", "duplicate probe name '" + pr.name + "'");
+    bool point = p.has("point"), line = p.has("line");
+    if (point == line) p.fail(point ? "line" : "point", "a probe needs exactly one of 'point' and 'line'");
+    if (point) {
+      pr.a = pr.b = requirePoint(p, "point", sc);
+    } else {
+      Section l = p.section("line");
+      pr.kind = Probe::Kind::Line;
+      pr.a = requirePoint(l, "from", sc);
+      pr.b = requirePoint(l, "to", sc);
+      if (!l.has("points")) l.fail("points", "is required");
+      pr.points = int(l.integer("points", 0, 2, 100000));
+      l.finish();
+    }
+    pr.fields = p.strings("fields", pr.fields);
+    pr.interval = p.number("interval", pr.interval, Range::nonNegative());
+    p.finish();
+    sc.probes.push_back(pr);
+  }
+}
+
+Scene build(YAML::Node root, const std::string& display, const std::string& path, const LoadOptions& opts) {
+  auto src = std::make_shared<SourceInfo>();
+  src->file = display;
+  if (!root.IsDefined() || root.IsNull()) root.reset(YAML::Node(YAML::NodeType::Map)); // empty file
+  if (!root.IsMap()) {
+    YAML::Mark m = root.Mark();
+    throw SceneError(cat(display, ":", m.line + 1, ":", m.column + 1, ": a scene must be a map of sections"));
+  }
+  for (auto& a : opts.overrides) src->overrides.push_back({applyOne(root, a), a});
+
+  Scene sc;
+  sc.path = path;
+  sc.root.reset(root);
+  sc.source = src;
+  const Section top(root, "", src);
+  // Check top-level names first: a typo'd section is a better message than "domain is required".
+  for (auto* k : kCoreKeys) top.allow(k);
+  for (auto& k : opts.extraSections) top.allow(k); // effects validate these themselves
+  top.finish();
+
+  std::string stem = display.substr(display.find_last_of('/') + 1);
+  sc.name = top.string("name", stem.substr(0, stem.find('.')));
+  if (top.has("name") && !isName(sc.name)) top.fail("name", "must match [A-Za-z0-9_-]+");
+  readDomain(top, sc);
+  readBoundaries(top, sc);
+  readTime(top, sc.time);
+  readMaterials(top, sc);
+  readEffects(top, sc, opts);
+  readObstacles(top, sc);
+  readSettings(top, sc);
+  readProbes(top, sc);
+  return sc;
+}
+
+YAML::Node parse(const std::string& text, const std::string& display) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    std::string at = e.mark.is_null() ? "" : cat(":", e.mark.line + 1, ":", e.mark.column + 1);
+    throw SceneError(display + at + ": invalid YAML: " + e.msg);
+  }
+}
+
+} // namespace
+
+void applyOverride(YAML::Node& root, const std::string& assignment) { applyOne(root, assignment); }
+
+Scene loadScene(const std::string& path, const LoadOptions& opts) {
+  std::ifstream in(path);
+  if (!in) throw SceneError("cannot open scene file '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  return build(parse(text.str(), path), path, path, opts);
+}
+
+Scene loadSceneFromString(const std::string& yaml, const std::string& name, const LoadOptions& opts) {
+  return build(parse(yaml, name), name, "", opts);
+}
+
+} // namespace voigt

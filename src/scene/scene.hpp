@@ -1,0 +1,114 @@
+#pragma once
+// A scene as the core understands it. Effects read their own sections from
+// `root` through a voigt::Section (reader.hpp), so new physics needs no change here.
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace voigt {
+
+using Vec3 = std::array<double, 3>;
+struct SourceInfo; // reader.hpp
+
+enum class BcType { NoSlip, Slip, Periodic, Inflow, Outflow };
+const char* toString(BcType t);
+
+// Face order: x-, x+, y-, y+, z-, z+ (face = 2*axis + side).
+struct FaceBc {
+  BcType type = BcType::NoSlip;
+  Vec3 velocity{0, 0, 0}; // wall velocity (no_slip: moving wall) or inflow velocity
+  double pressure = 0;    // outflow pressure
+};
+
+struct Material {
+  std::string name;
+  double density = 1;
+  double viscosity = 0;
+};
+
+struct ProjectionCfg {
+  enum class Op { Exact, Approximate } op = Op::Exact;
+  double tolerance = 1e-8;     // Belos relative residual
+  int maxIterations = 1000;
+  std::string preconditioner = "sgs"; // sgs | jacobi | none | multigrid
+  double damping = 1.0;        // Ifpack2 relaxation damping factor
+  int sweeps = 1;
+};
+
+struct AdvectionCfg {
+  std::string limiter = "minmod"; // minmod | van_leer | mc | none (unlimited, Fromm)
+};
+
+struct TimeCfg {
+  double endTime = 1;
+  double dt = 0;        // > 0: fixed step; 0: adaptive
+  double cfl = 0.5;     // adaptive: advective CFL number
+  double viscousSafety = 0.5; // fraction of the explicit viscous limit
+  double maxDt = std::numeric_limits<double>::infinity();
+  double minDt = 1e-12; // a step below this is a collapse: stop
+  long maxSteps = -1;   // -1: unlimited
+};
+
+struct Obstacle {
+  enum class Kind { Cylinder, Box, Sphere } kind = Kind::Sphere;
+  Vec3 center{0, 0, 0};
+  double radius = 0;
+  int axis = 2;          // cylinder axis
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0}; // box
+  Vec3 velocity{0, 0, 0};
+};
+
+struct InitialCfg {
+  // zero | uniform | taylor_green | couette | poiseuille
+  std::string velocity = "zero";
+  Vec3 uniform{0, 0, 0};
+  double amplitude = 1; // taylor_green: U0; poiseuille: centre velocity
+  double pressure = 0;  // uniform initial pressure
+};
+
+struct OutputCfg {
+  double interval = 0;  // simulated time between outputs; 0: first and last only
+  std::vector<std::string> fields{"velocity", "pressure"};
+  bool enabled = true;
+};
+
+struct Probe {
+  std::string name;
+  enum class Kind { Point, Line } kind = Kind::Point;
+  Vec3 a{0, 0, 0}, b{0, 0, 0};
+  int points = 1;
+  std::vector<std::string> fields{"velocity", "pressure"};
+  double interval = 0; // 0: every step
+};
+
+struct Scene {
+  std::string path;     // file it came from ("" for built-in)
+  YAML::Node root;      // the validated tree, with --set overrides applied
+  std::shared_ptr<const SourceInfo> source; // file name and --set list, for error locations
+  std::string name;
+  std::array<int, 3> cells{16, 16, 16};
+  Vec3 lo{0, 0, 0}, hi{1, 1, 1};
+  std::array<int, 3> ranks{0, 0, 0}; // requested decomposition, 0 = auto
+  std::array<FaceBc, 6> bc{};
+  TimeCfg time;
+  std::map<std::string, Material> materials;
+  std::string fluid;    // name of the fluid material
+  std::vector<std::string> effects;
+  Vec3 gravity{0, 0, 0};
+  std::vector<Obstacle> obstacles;
+  InitialCfg initial;
+  OutputCfg output;
+  std::vector<Probe> probes;
+  ProjectionCfg projection;
+  AdvectionCfg advection;
+
+  const Material& fluidMaterial() const { return materials.at(fluid); }
+  bool periodic(int axis) const { return bc[2 * axis].type == BcType::Periodic; }
+};
+
+} // namespace voigt
