@@ -78,6 +78,7 @@ class TpetraPoisson final : public PoissonSolver {
     b_ = Teuchos::rcp(new Vector(map_));
     x_ = Teuchos::rcp(new Vector(map_));
     t_ = Teuchos::rcp(new Vector(map_));
+    for (auto& v : pool_) v = Teuchos::rcp(new Vector(map_));
     ident_ = FlagView("poisson_identity_rows", nrows_);
     buildSolver();
   }
@@ -124,11 +125,13 @@ class TpetraPoisson final : public PoissonSolver {
       solver_->setProblem(problem_);
       try {
         st.converged = solver_->solve() == Belos::Converged;
-      } catch (const std::exception&) {
+      } catch (const std::exception& e) {
+        fprintf(stderr, "CG EXC %s\n", e.what());
         st.converged = false; // CG breakdown: report, do not throw
       }
       st.iterations = solver_->getNumIters();
-      projectOut(*x_); // the preconditioner may feed null modes into x
+      zeroIdentityRows(*x_); // a multigrid correction may leak into them
+      projectOut(*x_);       // the preconditioner may feed null modes into x
       A_->apply(*x_, *t_);
       t_->update(1.0, *b_, -1.0);
       st.relResidual = t_->norm2() / bn;
@@ -291,7 +294,7 @@ class TpetraPoisson final : public PoissonSolver {
     MPI_Allreduce(MPI_IN_PLACE, &dmax, 1, MPI_DOUBLE, MPI_MAX, comm_);
     modes_.clear();
     for (int m = 0; m < 5; ++m) {
-      auto v = Teuchos::rcp(new Vector(map_));
+      auto v = pool_[m];
       {
         auto vv = devView(*v);
         auto ident = ident_;
@@ -318,6 +321,16 @@ class TpetraPoisson final : public PoissonSolver {
       v->scale(1.0 / nq);
       modes_.push_back(v);
     }
+  }
+
+  void zeroIdentityRows(Vector& v) const {
+    auto vv = devView(v);
+    auto ident = ident_;
+    Kokkos::parallel_for(
+        "poisson_zero_identity", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
+          if (ident(r)) vv(r) = 0;
+        });
+    Kokkos::fence();
   }
 
   void projectOut(Vector& v) const {
@@ -366,7 +379,8 @@ class TpetraPoisson final : public PoissonSolver {
   Teuchos::RCP<Vector> b_, x_, t_;
   SlotView slot_;
   FlagView ident_;
-  std::vector<Teuchos::RCP<Vector>> modes_;
+  Teuchos::RCP<Vector> pool_[5];          // candidate null modes (allocated once)
+  std::vector<Teuchos::RCP<Vector>> modes_; // the kept ones, orthonormal
   Teuchos::RCP<Ifpack2::Preconditioner<Scalar, LO, GO, Node>> ifpack_;
   Teuchos::RCP<MueLu::TpetraOperator<Scalar, LO, GO, Node>> muelu_;
   Teuchos::RCP<Problem> problem_;

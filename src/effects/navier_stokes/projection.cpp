@@ -52,6 +52,7 @@ void NavierStokes::project(State& st) {
 
   st.halo->exchange(u);
   divergence(g, u, div, cells);
+  st.diag["max_divergence_predicted"] = globalMaxAbs(g, div, cells);
   Kokkos::parallel_for(
       "poisson_rhs", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k) / dt; });
   // dp of the previous step is the initial guess.
