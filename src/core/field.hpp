@@ -56,6 +56,8 @@ class FieldStore {
 };
 
 // Owned-index ranges as Kokkos policies (Cabana-style index spaces).
-using Policy3 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>;
+// Iterate Left: i fastest, matching LayoutLeft (the default follows the space's
+// preferred layout, LayoutRight on host, which strides through memory).
+using Policy3 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
 
 } // namespace voigt
