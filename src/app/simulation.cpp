@@ -89,8 +89,28 @@ double Simulation::chooseDt(double tEnd, double tNextOut) {
   return dt;
 }
 
+namespace {
+// Physical memory available to this process group, from sysconf.
+double availableBytes() {
+  return double(sysconf(_SC_AVPHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+}
+} // namespace
+
 void Simulation::initialize() {
   if (initialized_) return;
+  // Refuse a grid that cannot fit before touching memory: sum over the ranks
+  // sharing this node's memory, compare with what the node has free.
+  double need = double(st_.fields.bytes(st_.grid)), total = need;
+  MPI_Comm node;
+  MPI_Comm_split_type(st_.grid.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  MPI_Allreduce(&need, &total, 1, MPI_DOUBLE, MPI_SUM, node);
+  MPI_Comm_free(&node);
+  int tooBig = total > 0.9 * availableBytes(), any = 0;
+  MPI_Allreduce(&tooBig, &any, 1, MPI_INT, MPI_MAX, st_.grid.comm);
+  if (any)
+    throw SceneError((scene_.path.empty() ? scene_.name : scene_.path) + ": key 'domain.cells': the fields need " +
+                     std::to_string(total / 1073741824.0) + " GiB but only " +
+                     std::to_string(availableBytes() / 1073741824.0) + " GiB of memory is available");
   st_.fields.allocate(st_.grid);
   for (auto& e : effects_) e->setup(st_);
   initialized_ = true;
