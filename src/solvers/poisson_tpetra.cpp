@@ -7,12 +7,15 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "core/index_space.hpp"
 #include "kernels/projection_ops.hpp"
+#include "solvers/null_space.hpp"
 #include "solvers/poisson.hpp"
 #include "solvers/trilinos_types.hpp"
 
@@ -22,28 +25,15 @@ namespace {
 using namespace tpetra;
 constexpr int kStencil = 27; // slot table width: offset o = (di+1) + 3 (dj+1) + 9 (dk+1)
 constexpr int kCentre = 13;
+constexpr double kRoundoff = 1e-14; // rhs below this times ||A|| ||x0||: nothing to solve
 using SlotView = Kokkos::View<int**, Kokkos::LayoutRight, MemSpace>;
-using FlagView = Kokkos::View<int*, MemSpace>;
 
-// Owned cell (local i,j,k) <-> row r; rows in local lexicographic order, i fastest.
-struct Rows {
-  int ng, n0, n1;
-  KOKKOS_INLINE_FUNCTION int row(int i, int j, int k) const {
-    return (i - ng) + n0 * ((j - ng) + n1 * (k - ng));
-  }
-  KOKKOS_INLINE_FUNCTION void cell(int r, int& i, int& j, int& k) const {
-    i = ng + r % n0;
-    j = ng + (r / n0) % n1;
-    k = ng + r / (n0 * n1);
-  }
-};
-
-auto devView(Vector& v) {
+RowVector devView(Vector& v) {
   return Kokkos::subview(v.getLocalViewDevice(Tpetra::Access::ReadWrite), Kokkos::ALL(), 0);
 }
 
 // Field owned cells -> vector; identity rows zeroed when `ident` is non-empty.
-void fieldToVec(const Field& f, Vector& v, Rows rw, Range3 cells, FlagView ident) {
+void fieldToVec(const Field& f, Vector& v, CellRows rw, Range3 cells, RowFlags ident) {
   auto vv = devView(v);
   const bool zero = ident.extent(0) > 0;
   Kokkos::parallel_for(
@@ -54,13 +44,27 @@ void fieldToVec(const Field& f, Vector& v, Rows rw, Range3 cells, FlagView ident
   Kokkos::fence();
 }
 
-void vecToField(Vector& v, const Field& f, Rows rw, Range3 cells) {
+void vecToField(Vector& v, const Field& f, CellRows rw, Range3 cells) {
   auto vv = devView(v);
   Kokkos::parallel_for(
       "poisson_vec_to_field", cells.policy(),
       KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = vv(rw.row(i, j, k)); });
   Kokkos::fence();
 }
+
+// A for Belos, counting applications: the iteration count of a solve that
+// threw (breakdown), where getNumIters() is stale.
+struct CountedOperator final : Operator {
+  explicit CountedOperator(Teuchos::RCP<const Operator> a) : A(a) {}
+  Teuchos::RCP<const Map> getDomainMap() const override { return A->getDomainMap(); }
+  Teuchos::RCP<const Map> getRangeMap() const override { return A->getRangeMap(); }
+  void apply(const MV& X, MV& Y, Teuchos::ETransp mode, Scalar alpha, Scalar beta) const override {
+    ++count;
+    A->apply(X, Y, mode, alpha, beta);
+  }
+  Teuchos::RCP<const Operator> A;
+  mutable long count = 0;
+};
 
 class TpetraPoisson final : public PoissonSolver {
  public:
@@ -77,17 +81,25 @@ class TpetraPoisson final : public PoissonSolver {
     A_->fillComplete();
     b_ = Teuchos::rcp(new Vector(map_));
     x_ = Teuchos::rcp(new Vector(map_));
+    x0_ = Teuchos::rcp(new Vector(map_));
     t_ = Teuchos::rcp(new Vector(map_));
-    for (auto& v : pool_) v = Teuchos::rcp(new Vector(map_));
-    ident_ = FlagView("poisson_identity_rows", nrows_);
+    ident_ = RowFlags("poisson_identity_rows", nrows_);
+    pattern_ = RowFlags("poisson_pattern", nrows_);
+    Kokkos::deep_copy(pattern_, -1); // no pattern yet: the first setCoefficients finds the modes
+    ns_ = std::make_unique<NullSpace>(geom_, rows_, nrows_, comm_);
     buildSolver();
   }
 
   void setCoefficients(const VecField& coef) override {
     A_->resumeFill();
-    fillValues(coef);
+    const bool patternChanged = fillValues(coef);
     A_->fillComplete();
-    findNullModes();
+    auto applyA = [this](const RowVector& in, const RowVector& out) {
+      Kokkos::deep_copy(devView(*x_), in);
+      A_->apply(*x_, *t_);
+      Kokkos::deep_copy(out, devView(*t_));
+    };
+    if (patternChanged) ns_->rebuild(ident_, applyA, anorm_); // null(A) depends on the pattern only
     if (ifpack_) ifpack_->compute();
     if (cfg_.preconditioner == "multigrid") {
       if (muelu_.is_null()) {
@@ -111,30 +123,53 @@ class TpetraPoisson final : public PoissonSolver {
     if (!ready_) throw std::logic_error("PoissonSolver::solve before setCoefficients");
     const double t0 = MPI_Wtime();
     PoissonStats st;
-    st.nullModes = (int)modes_.size();
+    st.nullModes = ns_->dimension();
     fieldToVec(rhs, *b_, rows_, cells_, ident_);
     fieldToVec(x, *x_, rows_, cells_, ident_);
-    projectOut(*b_); // compatibility: rhs must lie in range(A) = null(A)^perp
-    projectOut(*x_);
-    const double bn = b_->norm2();
-    if (bn == 0) {
+    const double b0 = b_->norm2();
+    // Compatibility: rhs must lie in range(A) = null(A)^perp; say how far it was.
+    st.incompatibility = b0 > 0 ? ns_->remove(devView(*b_)) / b0 : 0.0;
+    double bn = b_->norm2();
+    if (bn < 0.5 * b0) { // mostly null: the null part left by round-off, eps ||b0||, is not
+      ns_->remove(devView(*b_)); // small against tol ||b||; CG would stagnate, then diverge
+      bn = b_->norm2();
+    }
+    ns_->remove(devView(*x_));
+    // Initial guess: x0 or 0, whichever has the smaller residual. x0 is usually
+    // the previous increment; when it is worse than 0 (rest after a transient),
+    // CG would have to reduce ||r0|| >> ||b|| below tol ||b||, beyond round-off.
+    double rn = residual();
+    if (!(rn <= bn)) {
       x_->putScalar(0);
+      rn = bn;
+    }
+    if (bn <= kRoundoff * std::max(anorm_ * x_->norm2(), b0)) {
+      // b is at round-off relative to A x (or to its own null part): the
+      // increment is below what double precision resolves. Keep x.
+      st.relResidual = bn > 0 ? rn / bn : 0.0;
       st.converged = true;
     } else {
+      Tpetra::deep_copy(*x0_, *x_);
       problem_->setProblem(x_, b_);
       solver_->setProblem(problem_);
+      bool belosConverged = false;
+      const long applies0 = counted_->count;
       try {
-        st.converged = solver_->solve() == Belos::Converged;
-      } catch (const std::exception& e) {
-        fprintf(stderr, "CG EXC %s\n", e.what());
-        st.converged = false; // CG breakdown: report, do not throw
+        belosConverged = solver_->solve() == Belos::Converged;
+        st.iterations = solver_->getNumIters();
+      } catch (const std::exception&) {
+        // CG breakdown (p^T A p <= 0, round-off): x holds the last iterate.
+        st.breakdowns = 1;
+        st.iterations = int(counted_->count - applies0); // getNumIters() is stale here
       }
-      st.iterations = solver_->getNumIters();
-      zeroIdentityRows(*x_); // a multigrid correction may leak into them
-      projectOut(*x_);       // the preconditioner may feed null modes into x
-      A_->apply(*x_, *t_);
-      t_->update(1.0, *b_, -1.0);
-      st.relResidual = t_->norm2() / bn;
+      zeroIdentityRows(*x_);     // a multigrid correction may leak into them
+      ns_->remove(devView(*x_)); // the preconditioner may feed null modes into x
+      st.relResidual = residual() / bn;
+      if (!belosConverged && !(st.relResidual * bn <= rn)) { // worse than the guess: keep it
+        Tpetra::deep_copy(*x_, *x0_);
+        st.relResidual = rn / bn;
+      }
+      st.converged = st.breakdowns ? st.relResidual <= 10 * cfg_.tolerance : belosConverged;
     }
     vecToField(*x_, x, rows_, cells_);
     st.seconds = MPI_Wtime() - t0;
@@ -142,13 +177,13 @@ class TpetraPoisson final : public PoissonSolver {
   }
 
   void apply(const Field& x, const Field& y) override {
-    fieldToVec(x, *x_, rows_, cells_, FlagView());
+    fieldToVec(x, *x_, rows_, cells_, RowFlags());
     A_->apply(*x_, *t_);
     vecToField(*t_, y, rows_, cells_);
   }
 
   long long globalNonzeros() const override { return (long long)A_->getGlobalNumEntries(); }
-  int nullModeCount() const override { return (int)modes_.size(); }
+  int nullModeCount() const override { return ns_->dimension(); }
 
  private:
   // Global column of cell (gi,gj,gk) + offset, wrapped on periodic axes; -1 outside.
@@ -214,19 +249,30 @@ class TpetraPoisson final : public PoissonSolver {
     Kokkos::deep_copy(slot_, hs);
   }
 
-  void fillValues(const VecField& coef) {
+  // Values from coef; sets anorm_ = ||A||_inf and returns whether the zero pattern
+  // (which of the 8 x 3 corner coefficients of each row vanish) changed, globally.
+  bool fillValues(const VecField& coef) {
     auto lcl = A_->getLocalMatrixDevice();
     auto vals = lcl.values;
     auto rowPtr = lcl.graph.row_map;
     auto slot = slot_;
     auto ident = ident_;
+    auto pattern = pattern_;
     const GridGeom G = geom_;
-    const Rows rw = rows_;
+    const CellRows rw = rows_;
     const bool exact = exact_;
-    Kokkos::parallel_for(
-        "poisson_fill", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
+    Kokkos::View<int, MemSpace> changed("poisson_pattern_changed");
+    double amax = 0;
+    Kokkos::parallel_reduce(
+        "poisson_fill", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r, double& rowMax) {
           int l[3];
           rw.cell(r, l[0], l[1], l[2]);
+          int mask = 0; // bit q = 3 corner + d: coef_d(corner) != 0
+          for (int q = 0; q < 24; ++q)
+            if (coef.c[q % 3](l[0] + ((q / 3) & 1), l[1] + ((q / 6) & 1), l[2] + ((q / 12) & 1)) != 0)
+              mask |= 1 << q;
+          if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
+          pattern(r) = mask;
           for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) vals(p) = 0;
           if (exact) {
             // A_{c,c'} = sum_{shared nodes n} sum_d coef_d(n)/w_n s_d(c,n) s_d(c',n) / (16 h_d^2)
@@ -268,59 +314,22 @@ class TpetraPoisson final : public PoissonSolver {
               }
           }
           bool empty = true;
-          for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) empty = empty && vals(p) == 0;
+          double sum = 0;
+          for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) {
+            empty = empty && vals(p) == 0;
+            sum += vals(p) < 0 ? -vals(p) : vals(p);
+          }
           ident(r) = empty ? 1 : 0;
-          if (empty) vals(slot(r, kCentre)) = 1; // all nodes prescribed: p is free, fix it to 0
-        });
+          if (empty) vals(slot(r, kCentre)) = sum = 1; // all nodes prescribed: p is free, fix it to 0
+          rowMax = rowMax > sum ? rowMax : sum;
+        },
+        Kokkos::Max<double>(amax));
     Kokkos::fence();
-  }
-
-  // Candidate modes 1, (-1)^(i+j), (-1)^(j+k), (-1)^(k+i), (-1)^(i+j+k), zero on
-  // identity rows; kept when numerically null, then orthonormalised.
-  void findNullModes() {
-    double dmax = 0;
-    {
-      auto lcl = A_->getLocalMatrixDevice();
-      auto vals = lcl.values;
-      auto slot = slot_;
-      Kokkos::parallel_reduce(
-          "poisson_maxdiag", Kokkos::RangePolicy<ExecSpace>(0, nrows_),
-          KOKKOS_LAMBDA(int r, double& m) {
-            const double v = vals(slot(r, kCentre));
-            m = m > (v < 0 ? -v : v) ? m : (v < 0 ? -v : v);
-          },
-          Kokkos::Max<double>(dmax));
-    }
-    MPI_Allreduce(MPI_IN_PLACE, &dmax, 1, MPI_DOUBLE, MPI_MAX, comm_);
-    modes_.clear();
-    for (int m = 0; m < 5; ++m) {
-      auto v = pool_[m];
-      {
-        auto vv = devView(*v);
-        auto ident = ident_;
-        const GridGeom G = geom_;
-        const Rows rw = rows_;
-        Kokkos::parallel_for(
-            "poisson_mode", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
-              int l[3];
-              rw.cell(r, l[0], l[1], l[2]);
-              const int gi = G.glob(0, l[0]), gj = G.glob(1, l[1]), gk = G.glob(2, l[2]);
-              const int e = m == 0 ? 0 : m == 1 ? gi + gj : m == 2 ? gj + gk : m == 3 ? gk + gi : gi + gj + gk;
-              vv(r) = ident(r) ? 0.0 : ((e & 1) ? -1.0 : 1.0);
-            });
-        Kokkos::fence();
-      }
-      const double nv = v->norm2();
-      if (nv == 0) continue;
-      A_->apply(*v, *t_);
-      if (t_->norm2() > 1e-10 * nv * dmax) continue;
-      for (int pass = 0; pass < 2; ++pass)
-        for (auto& q : modes_) v->update(-q->dot(*v), *q, 1.0);
-      const double nq = v->norm2();
-      if (nq <= 1e-8 * nv) continue; // dependent on the ones already kept
-      v->scale(1.0 / nq);
-      modes_.push_back(v);
-    }
+    MPI_Allreduce(&amax, &anorm_, 1, MPI_DOUBLE, MPI_MAX, comm_);
+    int any = 0;
+    Kokkos::deep_copy(any, changed);
+    MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, comm_);
+    return any != 0;
   }
 
   void zeroIdentityRows(Vector& v) const {
@@ -333,8 +342,10 @@ class TpetraPoisson final : public PoissonSolver {
     Kokkos::fence();
   }
 
-  void projectOut(Vector& v) const {
-    for (auto& q : modes_) v.update(-q->dot(v), *q, 1.0);
+  double residual() { // ||b - A x||, t = b - A x
+    A_->apply(*x_, *t_);
+    t_->update(1.0, *b_, -1.0);
+    return t_->norm2();
   }
 
   void buildSolver() {
@@ -347,7 +358,8 @@ class TpetraPoisson final : public PoissonSolver {
     bp->set("Output Frequency", -1);
     Belos::SolverFactory<Scalar, MV, Operator> factory;
     solver_ = factory.create("PSEUDOBLOCK CG", bp);
-    problem_ = Teuchos::rcp(new Problem(A_, x_, b_));
+    counted_ = Teuchos::rcp(new CountedOperator(A_));
+    problem_ = Teuchos::rcp(new Problem(counted_, x_, b_));
     const std::string& pc = cfg_.preconditioner;
     if (pc == "sgs" || pc == "jacobi") {
       using RowMatrix = Tpetra::RowMatrix<Scalar, LO, GO, Node>;
@@ -366,7 +378,7 @@ class TpetraPoisson final : public PoissonSolver {
   }
 
   GridGeom geom_;
-  Rows rows_;
+  CellRows rows_;
   Range3 cells_;
   ProjectionCfg cfg_;
   bool exact_ = true, ready_ = false;
@@ -376,11 +388,13 @@ class TpetraPoisson final : public PoissonSolver {
   Teuchos::RCP<const Map> map_;
   Teuchos::RCP<Graph> graph_;
   Teuchos::RCP<Matrix> A_;
-  Teuchos::RCP<Vector> b_, x_, t_;
+  Teuchos::RCP<Vector> b_, x_, x0_, t_;
   SlotView slot_;
-  FlagView ident_;
-  Teuchos::RCP<Vector> pool_[5];          // candidate null modes (allocated once)
-  std::vector<Teuchos::RCP<Vector>> modes_; // the kept ones, orthonormal
+  RowFlags ident_;
+  RowFlags pattern_;          // per row: bit 3 corner + d set when coef_d(corner) != 0 (fillValues)
+  double anorm_ = 0;          // ||A||_inf
+  std::unique_ptr<NullSpace> ns_;
+  Teuchos::RCP<CountedOperator> counted_; // A as Belos sees it
   Teuchos::RCP<Ifpack2::Preconditioner<Scalar, LO, GO, Node>> ifpack_;
   Teuchos::RCP<MueLu::TpetraOperator<Scalar, LO, GO, Node>> muelu_;
   Teuchos::RCP<Problem> problem_;

@@ -25,19 +25,31 @@ std::string cavity(int n, const std::string& op, const std::string& tol) {
 
 // Exact projection: D u^{n+1} = -dt (b - A dp), so with relative tolerance tol
 // on ||b||_2, max|D u| <= tol * ||b||_2 * dt <= tol * sqrt(N) * max|D u*|.
+// That holds when b is compatible. With a lid whose edge nodes stay at rest,
+// an even n puts part of D u* into null(A) (the (-1)^(i+j) f(k) family of the
+// 27-point operator, see src/solvers/null_space.hpp): no pressure removes it,
+// and the solver reports it as incompatibility. Odd n is compatible.
 TEST(Projection, ExactDivergenceIsSolverResidual) {
-  auto sim = test::runScene(test::scene(cavity(16, "exact", "1e-10")));
-  const double bound = 1e-10 * std::sqrt(16.0 * 16 * 16) * diag(*sim, "max_divergence_predicted");
+  auto sim = test::runScene(test::scene(cavity(15, "exact", "1e-10")));
+  const double bound = 1e-10 * std::sqrt(15.0 * 15 * 15) * diag(*sim, "max_divergence_predicted");
   EXPECT_GT(diag(*sim, "max_divergence_predicted"), 1e-3); // the lid really drives a divergent u*
+  EXPECT_LT(diag(*sim, "poisson_incompatibility"), 1e-12);
   EXPECT_LE(diag(*sim, "max_divergence"), bound);
 }
 
+TEST(Projection, ExactReportsIncompatibleLid) {
+  auto sim = test::runScene(test::scene(cavity(16, "exact", "1e-10")));
+  EXPECT_GT(diag(*sim, "poisson_incompatibility"), 1e-3);
+  EXPECT_LE(diag(*sim, "poisson_residual"), 1e-10); // the compatible part is solved to tolerance
+}
+
 // Approximate projection on a smooth periodic flow: the leftover divergence
-// after one step is O(h^2) (measured order 2.0); asserted > 1.8.
+// after one step is O(h^2); asserted > 1.8 between 32^3 and 64^3 (16 -> 32
+// is still pre-asymptotic in the max norm: 1.72).
 TEST(Projection, ApproximateDivergenceFallsAsHSquared) {
   double d[2];
   int i = 0;
-  for (int n : {16, 32}) {
+  for (int n : {32, 64}) {
     auto s = "name: tg\ndomain: {lo: [0,0,0], hi: [6.283185307179586, 6.283185307179586, 6.283185307179586], cells: [" +
              std::to_string(n) + "," + std::to_string(n) + "," + std::to_string(n) + "]}\n"
              "boundaries: {default: {type: periodic}}\nmaterials: {fluid: {density: 1, viscosity: 0.01}}\n"

@@ -30,12 +30,14 @@ class NavierStokes : public Effect {
  private:
   void evaluateRhs(State& st, Pipeline& p, const VecField& u, const VecField& rhs);
   void initialVelocity(State& st);
+  void initialPressure(State& st, Pipeline& p);
 
   const Scene* scene_ = nullptr;
   Limiter limiter_ = Limiter::MinMod;
   std::unique_ptr<PoissonSolver> solver_;
   Pipeline* pipeline_ = nullptr;
   double pRef_ = 0; // outflow pressure: stored p is relative to it
+  bool initialPressureDone_ = false;
 };
 
 SymTensorField stressField(const FieldStore& f);

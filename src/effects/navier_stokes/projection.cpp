@@ -69,6 +69,7 @@ void NavierStokes::project(State& st) {
   st.diag["max_divergence"] = globalMaxAbs(g, div, cells);
   st.diag["poisson_iterations"] = s.iterations;
   st.diag["poisson_residual"] = s.relResidual;
+  st.diag["poisson_incompatibility"] = s.incompatibility;
   st.diag["pressure_reference"] = pRef_;
   auto& c = st.counters;
   c["poisson_solves"] += 1;
@@ -76,6 +77,8 @@ void NavierStokes::project(State& st) {
   c["poisson_iterations_max"] = std::max(c["poisson_iterations_max"], double(s.iterations));
   c["poisson_seconds"] += s.seconds;
   if (!s.converged) c["poisson_unconverged"] += 1;
+  c["poisson_breakdowns"] += s.breakdowns;
+  c["poisson_incompatibility_max"] = std::max(c["poisson_incompatibility_max"], s.incompatibility);
 }
 
 } // namespace voigt

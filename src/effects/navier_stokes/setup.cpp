@@ -147,6 +147,8 @@ void NavierStokes::summary(const State& st, nlohmann::json& j) const {
                   {"iterations_mean", n > 0 ? get("poisson_iterations") / n : 0},
                   {"iterations_max", get("poisson_iterations_max")},
                   {"unconverged", get("poisson_unconverged")},
+                  {"breakdowns", get("poisson_breakdowns")},
+                  {"incompatibility_max", get("poisson_incompatibility_max")},
                   {"null_modes", solver_ ? solver_->nullModeCount() : 0},
                   {"matrix_nonzeros", solver_ ? solver_->globalNonzeros() : 0},
                   {"operator", scene_->projection.op == ProjectionCfg::Op::Exact ? "exact" : "approximate"}};
