@@ -42,6 +42,18 @@ struct GridGeom {
     const int gi = glob(d, l);
     return per[d] || (gi >= 0 && gi < n[d]);
   }
+  // Mean of a cell field over the existing cells around node (i,j,k).
+  KOKKOS_INLINE_FUNCTION double nodeMean(const Field& f, int i, int j, int k) const {
+    double s = 0;
+    int m = 0;
+    for (int c = 0; c < 8; ++c) {
+      const int ci = i - 1 + (c & 1), cj = j - 1 + ((c >> 1) & 1), ck = k - 1 + ((c >> 2) & 1);
+      if (!cellExists(0, ci) || !cellExists(1, cj) || !cellExists(2, ck)) continue;
+      s += f(ci, cj, ck);
+      ++m;
+    }
+    return s / m;
+  }
 };
 
 // div = D u over the given cells.

@@ -37,15 +37,7 @@ inline double kineticEnergy(const Grid& g, const VecField& u, const Field& rhoCe
   Kokkos::parallel_reduce(
       "kinetic_energy", nodeRange(g).policy(),
       KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
-        double rho = 0;
-        int n = 0;
-        for (int c = 0; c < 8; ++c) {
-          const int ci = i - 1 + (c & 1), cj = j - 1 + ((c >> 1) & 1), ck = k - 1 + ((c >> 2) & 1);
-          if (!G.cellExists(0, ci) || !G.cellExists(1, cj) || !G.cellExists(2, ck)) continue;
-          rho += rhoCell(ci, cj, ck);
-          ++n;
-        }
-        rho /= n;
+        const double rho = G.nodeMean(rhoCell, i, j, k);
         const double u2 = u.c[0](i, j, k) * u.c[0](i, j, k) + u.c[1](i, j, k) * u.c[1](i, j, k) +
                           u.c[2](i, j, k) * u.c[2](i, j, k);
         acc += 0.5 * rho * u2 * G.nodeWeight(i, j, k) * vol;

@@ -79,13 +79,15 @@ double Simulation::chooseDt(double tEnd, double tNextOut) {
       st_.dtReason = "nothing moves";
     }
   }
-  // Land exactly on outputs and the end (1e-12 relative slack avoids a sliver step).
+  // Land exactly on outputs and the end (1e-9 relative slack avoids a sliver step).
+  bool clipped = false;
   for (double target : {tNextOut, tEnd}) {
     if (target > st_.t && st_.t + dt * (1 + 1e-9) >= target) {
       dt = target - st_.t;
-      st_.dtReason += " (clipped to output/end)";
+      clipped = true;
     }
   }
+  if (clipped) st_.dtReason += " (clipped to output/end)";
   return dt;
 }
 

@@ -25,15 +25,7 @@ void NavierStokes::refreshCoefficients(State& st) {
   fillCellGhostsEven(g, rho);
   Kokkos::parallel_for(
       "projection_coef", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        double r = 0;
-        int n = 0;
-        for (int c = 0; c < 8; ++c) {
-          const int ci = i - 1 + (c & 1), cj = j - 1 + ((c >> 1) & 1), ck = k - 1 + ((c >> 2) & 1);
-          if (!G.cellExists(0, ci) || !G.cellExists(1, cj) || !G.cellExists(2, ck)) continue;
-          r += rho(ci, cj, ck);
-          ++n;
-        }
-        const double inv = n / r;
+        const double inv = 1 / G.nodeMean(rho, i, j, k);
         const int m = mask(i, j, k);
         for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) = (m >> d) & 1 ? 0.0 : inv;
       });
