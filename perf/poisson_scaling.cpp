@@ -27,8 +27,8 @@ int main(int argc, char** argv) {
       RunOptions opt;
       opt.progress = false;
       Simulation sim(s, MPI_COMM_WORLD, opt);
-      const double dt = sim.stableDt().dt;
       sim.initialize();
+      const double dt = sim.stableDt().dt;
       auto& c = sim.state().counters;
       sim.advance(std::isfinite(dt) ? dt : 1e-3);
       const double its1 = c["poisson_iterations"], s1 = c["poisson_seconds"];

@@ -52,6 +52,7 @@ std::string Simulation::describe() const {
 }
 
 DtLimit Simulation::stableDt() const {
+  if (!initialized_) throw std::logic_error("Simulation::stableDt before initialize()");
   DtLimit best;
   for (auto& e : effects_) {
     DtLimit l = e->dtLimit(st_);
