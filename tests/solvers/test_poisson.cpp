@@ -427,15 +427,16 @@ TEST(Poisson, RoundoffRhs) {
   EXPECT_GT(st.iterations, 0);
 }
 
-// (c4) CG breakdown (p^T A p <= 0 once the tolerance is below what round-off
-// allows): not thrown; the true residual decides, iterations are counted.
-// Measured at 12^3, SGS, tol 1e-18: breakdown after 204 its (498 on 2 ranks),
-// relres 8.6e-8 (2.0e-7); the iteration passed 1.4e-14 before stagnating.
+// (c4) A tolerance below what round-off allows: CG either breaks down
+// (p^T A p <= 0) or stagnates to the iteration limit; neither throws, the true
+// residual decides, iterations are counted. Measured at 12^3, SGS, tol 1e-18:
+// breakdown after 204 its on 1 rank; on 2 ranks (with the null-space-projected
+// preconditioner) no breakdown, the limit is reached.
 TEST(Poisson, BreakdownIsReported) {
   Case c({12, 12, 12});
   auto coef = makeCoef(c, {-1, true});
   auto cfg = cfgOf(ProjectionCfg::Op::Exact, 1e-18);
-  cfg.maxIterations = 5000;
+  cfg.maxIterations = 2000;
   auto s = makePoissonSolver(c.g, cfg);
   s->setCoefficients(coef);
   auto ustar = makeVelocity(c, coef);
@@ -443,10 +444,10 @@ TEST(Poisson, BreakdownIsReported) {
   divergence(c.g, ustar, b, cellRange(c.g));
   PoissonStats st;
   EXPECT_NO_THROW(st = s->solve(b, x));
-  EXPECT_EQ(st.breakdowns, 1);
+  EXPECT_LE(st.breakdowns, 1);
   EXPECT_FALSE(st.converged);
   EXPECT_GT(st.iterations, 0);
-  EXPECT_LT(st.iterations, cfg.maxIterations);
+  EXPECT_TRUE(st.breakdowns == 1 || st.iterations == cfg.maxIterations);
   EXPECT_LE(st.relResidual, 1e-5);
   EXPECT_TRUE(std::isfinite(maxAbs(c, x)));
 }
