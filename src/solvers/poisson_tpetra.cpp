@@ -16,6 +16,7 @@
 #include "core/index_space.hpp"
 #include "kernels/projection_ops.hpp"
 #include "solvers/null_space.hpp"
+#include "solvers/operators.hpp"
 #include "solvers/poisson.hpp"
 #include "solvers/trilinos_types.hpp"
 
@@ -51,41 +52,6 @@ void vecToField(Vector& v, const Field& f, CellRows rw, Range3 cells) {
       KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = vv(rw.row(i, j, k)); });
   Kokkos::fence();
 }
-
-// A for Belos, counting applications: the iteration count of a solve that
-// threw (breakdown), where getNumIters() is stale.
-struct CountedOperator final : Operator {
-  explicit CountedOperator(Teuchos::RCP<const Operator> a) : A(a) {}
-  Teuchos::RCP<const Map> getDomainMap() const override { return A->getDomainMap(); }
-  Teuchos::RCP<const Map> getRangeMap() const override { return A->getRangeMap(); }
-  void apply(const MV& X, MV& Y, Teuchos::ETransp mode, Scalar alpha, Scalar beta) const override {
-    ++count;
-    A->apply(X, Y, mode, alpha, beta);
-  }
-  Teuchos::RCP<const Operator> A;
-  mutable long count = 0;
-};
-
-// A preconditioner followed by the null-space projection. SGS and multigrid do
-// not map range(A) into itself; projecting keeps every Krylov direction in
-// range(A), so round-off cannot feed the null directions (at an unreachable
-// tolerance on 2 ranks CG then runs to its limit instead of breaking down).
-// Iteration counts on the cavity are unchanged; the cost is one P_N a step.
-struct ProjectedPrec final : Operator {
-  ProjectedPrec(Teuchos::RCP<const Operator> m, const NullSpace* ns) : M(m), ns(ns) {}
-  Teuchos::RCP<const Map> getDomainMap() const override { return M->getDomainMap(); }
-  Teuchos::RCP<const Map> getRangeMap() const override { return M->getRangeMap(); }
-  void apply(const MV& X, MV& Y, Teuchos::ETransp mode, Scalar alpha, Scalar beta) const override {
-    M->apply(X, Y, mode, alpha, beta);
-    if (ns->dimension() == 0) return;
-    for (size_t c = 0; c < Y.getNumVectors(); ++c) {
-      RowVector y = Kokkos::subview(Y.getLocalViewDevice(Tpetra::Access::ReadWrite), Kokkos::ALL(), c);
-      ns->remove(y);
-    }
-  }
-  Teuchos::RCP<const Operator> M;
-  const NullSpace* ns;
-};
 
 class TpetraPoisson final : public PoissonSolver {
  public:
