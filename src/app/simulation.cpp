@@ -185,7 +185,7 @@ std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& na
 
 void Simulation::output(bool force) {
   if (opt_.outDir.empty()) return;
-  if (probes_ && !scene_.probes.empty()) {
+  if (probes_ && !scene_.probes.empty() && (force || probes_->due(st_.t))) {
     std::vector<std::string> names;
     for (auto& p : scene_.probes)
       for (auto& f : p.fields)

@@ -6,6 +6,19 @@
 #include <stdexcept>
 
 namespace voigt {
+
+namespace {
+// The one rule for when a probe samples (interval 0: every call).
+bool probeDue(const Probe& p, bool sampled, double next, double t) {
+  return !sampled || p.interval <= 0 || t >= next - 1e-9 * p.interval;
+}
+} // namespace
+
+bool ProbeSet::due(double t) const {
+  for (auto& s : probes_)
+    if (probeDue(s.probe, s.sampled, s.next, t)) return true;
+  return false;
+}
 namespace {
 
 // Shortest text that reads back to the same double.
@@ -93,7 +106,7 @@ ProbeSet::ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string 
 void ProbeSet::sample(double t, const std::vector<OutField>& available, bool force) {
   for (auto& s : probes_) {
     const Probe& p = s.probe;
-    if (!(force || !s.sampled || p.interval <= 0 || t >= s.next - 1e-9 * p.interval)) continue;
+    if (!(force || probeDue(p, s.sampled, s.next, t))) continue;
     s.sampled = true;
     if (p.interval > 0) s.next = (std::floor(t / p.interval + 1e-9) + 1) * p.interval;
 

@@ -17,6 +17,8 @@ class ProbeSet {
   // Collective over g.comm. Ghost layers must be exchanged first. Honours each
   // probe's interval (0 = every call); force samples regardless.
   void sample(double t, const std::vector<OutField>& available, bool force = false);
+  // Would sample(t) sample anything? Lets the caller skip gathering the fields.
+  bool due(double t) const;
 
  private:
   // Per-axis stencil of one point: base local index and weight of index+1,

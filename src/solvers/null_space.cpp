@@ -34,22 +34,11 @@ struct Basis {
   }
 };
 
-// Array reduction s = M^T v over the local rows.
-struct AnalyzeFunctor {
+// Kokkos array-sum reduction: value_type, init and join shared by the functors.
+struct ArraySum {
   using value_type = double[];
   using size_type = int;
   unsigned value_count;
-  Basis B;
-  RowVector v;
-  RowFlags ident;
-  KOKKOS_INLINE_FUNCTION void operator()(int r, value_type s) const {
-    if (ident(r)) return;
-    int idx[4];
-    double sg[4];
-    B.at(r, idx, sg);
-    const double x = v(r);
-    for (int m = 0; m < 4; ++m) s[idx[m]] += sg[m] * x;
-  }
   KOKKOS_INLINE_FUNCTION void init(value_type s) const {
     for (unsigned m = 0; m < value_count; ++m) s[m] = 0;
   }
@@ -61,11 +50,23 @@ struct AnalyzeFunctor {
   }
 };
 
+// Array reduction s = M^T v over the local rows.
+struct AnalyzeFunctor : ArraySum {
+  Basis B;
+  RowVector v;
+  RowFlags ident;
+  KOKKOS_INLINE_FUNCTION void operator()(int r, value_type s) const {
+    if (ident(r)) return;
+    int idx[4];
+    double sg[4];
+    B.at(r, idx, sg);
+    const double x = v(r);
+    for (int m = 0; m < 4; ++m) s[idx[m]] += sg[m] * x;
+  }
+};
+
 // Array reduction ps[q] = sum over plane q along `axis` of y^2.
-struct PlaneNormFunctor {
-  using value_type = double[];
-  using size_type = int;
-  unsigned value_count;
+struct PlaneNormFunctor : ArraySum {
   GridGeom G;
   CellRows rw;
   int axis;
@@ -74,15 +75,6 @@ struct PlaneNormFunctor {
     int l[3];
     rw.cell(r, l[0], l[1], l[2]);
     s[G.glob(axis, l[axis])] += y(r) * y(r);
-  }
-  KOKKOS_INLINE_FUNCTION void init(value_type s) const {
-    for (unsigned m = 0; m < value_count; ++m) s[m] = 0;
-  }
-  KOKKOS_INLINE_FUNCTION void join(value_type d, const value_type s) const {
-    for (unsigned m = 0; m < value_count; ++m) d[m] += s[m];
-  }
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type d, const volatile value_type s) const {
-    for (unsigned m = 0; m < value_count; ++m) d[m] += s[m];
   }
 };
 
@@ -114,7 +106,7 @@ NullSpace::NullSpace(const GridGeom& G, const CellRows& rows, int nrows, MPI_Com
 }
 
 void NullSpace::analyze(const RowVector& v, double* s) const {
-  AnalyzeFunctor f{(unsigned)nb_, Basis{G_, rows_, off_[0], off_[1], off_[2]}, v, ident_};
+  AnalyzeFunctor f{{(unsigned)nb_}, Basis{G_, rows_, off_[0], off_[1], off_[2]}, v, ident_};
   Kokkos::parallel_reduce("nullspace_analyze", Kokkos::RangePolicy<ExecSpace>(0, nrows_), f, s);
   MPI_Allreduce(MPI_IN_PLACE, s, nb_, MPI_DOUBLE, MPI_SUM, comm_);
 }
@@ -138,7 +130,7 @@ void NullSpace::synthesize(const double* a, const RowVector& v, bool subtract) c
 }
 
 void NullSpace::planeNorms(const RowVector& y, int axis, double* ps) const {
-  PlaneNormFunctor f{(unsigned)G_.n[axis], G_, rows_, axis, y};
+  PlaneNormFunctor f{{(unsigned)G_.n[axis]}, G_, rows_, axis, y};
   Kokkos::parallel_reduce("nullspace_plane_norms", Kokkos::RangePolicy<ExecSpace>(0, nrows_), f, ps);
   MPI_Allreduce(MPI_IN_PLACE, ps, G_.n[axis], MPI_DOUBLE, MPI_SUM, comm_);
 }
