@@ -126,7 +126,8 @@ void Simulation::advance(double dt) {
   st_.t += st_.dt;
   st_.step += 1;
   checkFinite();
-  st_.diag["kinetic_energy"] = kineticEnergy(st_.grid, st_.fields.vector("velocity"), st_.fields.scalar("density"));
+  if (st_.fields.allocated("density")) // kinematic scenes (prescribed_flow) carry no mass
+    st_.diag["kinetic_energy"] = kineticEnergy(st_.grid, st_.fields.vector("velocity"), st_.fields.scalar("density"));
 }
 
 void Simulation::checkFinite() {
@@ -202,15 +203,22 @@ void Simulation::output(bool force) {
 void Simulation::writeTimeSeries() {
   if (opt_.outDir.empty() || st_.grid.rank != 0) return;
   const std::string path = opt_.outDir + "/timeseries.csv";
-  const bool fresh = !fs::exists(path);
   std::ofstream os(path, std::ios::app);
-  if (fresh) {
+  // Columns are fixed by the first row; a diagnostic that appears later (an
+  // effect running every N steps) is left empty until it exists, and one
+  // that was not there at the first row is not written, so rows stay aligned.
+  if (tsColumns_.empty()) {
+    for (auto& [k, v] : st_.diag) tsColumns_.push_back(k);
     os << "step,t,dt,dt_reason";
-    for (auto& [k, v] : st_.diag) os << "," << k;
+    for (auto& k : tsColumns_) os << "," << k;
     os << "\n";
   }
   os << st_.step << "," << st_.t << "," << st_.dt << "," << st_.dtReason;
-  for (auto& [k, v] : st_.diag) os << "," << v;
+  for (auto& k : tsColumns_) {
+    os << ",";
+    auto it = st_.diag.find(k);
+    if (it != st_.diag.end()) os << it->second;
+  }
   os << "\n";
 }
 

@@ -41,6 +41,13 @@ class Simulation {
   void advance(double dt);      // one time step of size dt
   RunResult run();              // until end time or max steps, with output
   State& state() { return st_; }
+  const State& state() const { return st_; }
+  // The scene's effect of that name, or nullptr (tests and diagnostics).
+  Effect* effect(const std::string& name) const {
+    for (auto& e : effects_)
+      if (e->name() == name) return e.get();
+    return nullptr;
+  }
   const Pipeline& pipeline() const { return pipeline_; }
   nlohmann::json summary(const RunResult& r) const;
 
@@ -61,6 +68,7 @@ class Simulation {
   int outputIndex_ = 0;
   double nextOutput_ = 0;
   std::map<std::string, long> dtReasons_;
+  std::vector<std::string> tsColumns_; // timeseries.csv columns, fixed by the first row
 };
 
 } // namespace voigt

@@ -8,6 +8,9 @@ namespace voigt {
 std::unique_ptr<Effect> makeNavierStokes();
 std::unique_ptr<Effect> makeGravity();
 std::unique_ptr<Effect> makeObstacles();
+std::unique_ptr<Effect> makeLevelSet();
+std::unique_ptr<Effect> makeReinit();
+std::unique_ptr<Effect> makePrescribedFlow();
 
 const std::vector<EffectInfo>& effectRegistry() {
   static const std::vector<EffectInfo> reg = {
@@ -15,6 +18,12 @@ const std::vector<EffectInfo>& effectRegistry() {
        makeNavierStokes},
       {"gravity", "body force from the scene's gravity vector", "", makeGravity},
       {"obstacles", "fixed or moving rigid bodies: prescribed node velocities", "", makeObstacles},
+      {"level_set", "two phases: MUSCL advection of psi (Eq. 1), properties blended by H(psi) (Eq. 2-4)",
+       "level_set", makeLevelSet},
+      {"reinit", "Sussman re-initialisation of psi with the local volume constraint (Eq. 17-21)", "reinit",
+       makeReinit},
+      {"prescribed_flow", "kinematic velocity field given in closed form (rotation, vortex, ...)",
+       "prescribed_flow", makePrescribedFlow},
   };
   return reg;
 }

@@ -1,5 +1,8 @@
 #pragma once
 // Helpers for flow tests: scenes from strings, errors against exact fields.
+#include <gtest/gtest.h>
+
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -60,6 +63,16 @@ inline std::unique_ptr<Simulation> runScene(const Scene& s, MPI_Comm comm = MPI_
   auto sim = std::make_unique<Simulation>(s, comm, opt);
   sim->run();
   return sim;
+}
+
+// A measured number: printed on rank 0 and recorded in the GoogleTest XML.
+inline void report(const std::string& key, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6e", v);
+  ::testing::Test::RecordProperty(key, buf);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0) std::printf("[ measured ] %s = %s\n", key.c_str(), buf);
 }
 
 } // namespace voigt::test

@@ -1,0 +1,268 @@
+#pragma once
+// Re-initialisation kernel family (paper Eq. 17-21), narrow band.
+//
+// Eq. (17) dpsi/dtau = S(psi0)(1 - |grad psi|), S = psi0 / sqrt(psi0^2 + h^2)
+//   (Sussman, Smereka & Osher 1994), |grad psi| by the Godunov upwind rule on
+//   second-order ENO one-sided differences (Sussman et al. 1998), per-axis h.
+// Subcell fix (Russo & Smereka 2000) in cells whose psi0 changes sign across a
+//   face: dpsi/dtau = (D - psi)/h, D = psi0 / |grad psi0|_RS, with
+//   |grad psi0|_RS from the largest of the central and one-sided differences per
+//   axis. It pins those cells to the distance the initial zero contour implies,
+//   so the upwind scheme cannot drag the interface.
+// Eq. (18)-(21) (Sussman & Fatemi 1999) per cell c, with psi~ the Eikonal result
+//   of the pseudo step and psi^m the value before it:
+//     psi^{m+1}_c = psi~_c + dtau lambda_c f_c,   f = H'(psi0)|grad psi0|,
+//     lambda_c = -INT H'(psi0)(psi~ - psi^m)/dtau / INT H'(psi0) f,
+//   so dtau lambda_c f_c = -coef_c SUM_n w_n H'_n (psi~_n - psi^m_n) with
+//   coef_c = f_c / SUM_n w_n H'_n f_n, fixed for the call (psi0 is).
+//   The integral over cell c uses the 27-point tensor product of the 1-D weights
+//   (1, 22, 1)/24: the quadratic p through (-h,a), (0,b), (h,c) is
+//   p = b + (c-a)x/2h + (a-2b+c)x^2/2h^2, and its mean over [-h/2, h/2] is
+//   b + (a-2b+c)/24 (x^2 averages to h^2/12) = (a + 22b + c)/24.
+// Band cells are a packed list (local index i + e0 (j + e1 k)); every pseudo-time
+// kernel is a 1-D RangePolicy over it. H'(psi0) = 0 outside the band when
+// band >= kappa, so the lambda stencil needs no extra layer: cells outside the band
+// contribute nothing to either integral (their psi does not move either).
+#include <Kokkos_Core.hpp>
+#include <cmath>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "core/index_space.hpp"
+#include "kernels/heaviside.hpp"
+
+namespace voigt {
+namespace reinit {
+
+using IntList = Kokkos::View<int*, MemSpace>;
+using RealList = Kokkos::View<double*, MemSpace>;
+
+// BandViews::flags bits. kEno << d: the 5-point ENO stencil along axis d lies in the band.
+enum : int { kInterface = 1, kInterior = 2, kEno = 4 };
+
+struct BandViews {
+  IntList cell;   // packed local index
+  IntList flags;  // kInterface: psi0 changes sign across a face (subcell fix);
+                  // kInterior: not kInterface and all 6 face neighbours in the band
+  RealList sgn;   // S(psi0)
+  RealList dist;  // Russo-Smereka distance D (kInterface cells)
+  RealList coef;  // f_c / INT H' f (0 without the constraint or where INT ~ 0)
+};
+
+struct Unpack {
+  int e0, e1;
+  KOKKOS_INLINE_FUNCTION void operator()(int p, int& i, int& j, int& k) const {
+    i = p % e0;
+    const int t = p / e0;
+    j = t % e1;
+    k = t / e1;
+  }
+};
+
+KOKKOS_INLINE_FUNCTION double minmod(double a, double b) { // branch-free: this is the hot loop
+  return (std::copysign(0.5, a) + std::copysign(0.5, b)) * std::fmin(std::fabs(a), std::fabs(b));
+}
+
+// Second-order ENO one-sided differences at p0 along one axis.
+// eno = false: first-order differences (the stencil would reach a frozen cell).
+KOKKOS_INLINE_FUNCTION void eno2(double pm2, double pm1, double p0, double pp1, double pp2, double h, bool eno,
+                                 double& dm, double& dp) {
+  const double d2m = pm2 - 2 * pm1 + p0, d20 = pm1 - 2 * p0 + pp1, d2p = p0 - 2 * pp1 + pp2;
+  const double c = eno ? 0.5 : 0.0;
+  dm = (p0 - pm1 + c * minmod(d2m, d20)) / h;
+  dp = (pp1 - p0 - c * minmod(d20, d2p)) / h;
+}
+
+// Godunov's choice of the squared upwind derivative for the sign s of psi0:
+// s > 0 takes max(D-, 0)^2 and min(D+, 0)^2, s < 0 the mirror image.
+KOKKOS_INLINE_FUNCTION double godunov2(double s, double dm, double dp) {
+  const double sg = s > 0 ? 1.0 : -1.0;
+  const double a = std::fmax(sg * dm, 0.0), b = std::fmax(-sg * dp, 0.0);
+  return std::fmax(a * a, b * b);
+}
+
+// Compact list of owned cells with |psi0| < band (parallel_scan); returns the count.
+inline int buildBandList(const Grid& g, const Field& psi0, double band, const IntList& cell) {
+  const int ng = g.ng, l0 = g.ln[0], l1 = g.ln[1], e0 = g.ext[0], e1 = g.ext[1];
+  const int total = l0 * l1 * g.ln[2];
+  int count = 0;
+  Kokkos::parallel_scan(
+      "reinit_band_list", Kokkos::RangePolicy<ExecSpace>(0, total),
+      KOKKOS_LAMBDA(int q, int& upd, bool final) {
+        const int i = ng + q % l0, j = ng + (q / l0) % l1, k = ng + q / (l0 * l1);
+        if (std::fabs(psi0(i, j, k)) < band) {
+          if (final) cell(upd) = i + e0 * (j + e1 * k);
+          ++upd;
+        }
+      },
+      count);
+  return count;
+}
+
+// H'(psi0) of Eq. (4) over the whole array (ghosts included; psi0 must be fresh).
+inline void deltaField(const Grid& g, const Field& psi0, const Field& dH, double kappa) {
+  Kokkos::parallel_for(
+      "reinit_delta", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}}.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k) { dH(i, j, k) = smoothedDelta(psi0(i, j, k), kappa); });
+}
+
+// Per band cell, fixed for the call: flags, S(psi0), D, and the constraint's coef.
+// psi0 and dH need 2 fresh ghost layers (|grad psi0| at the stencil's neighbours).
+inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& psi0, const Field& dH,
+                        double band, bool constraint) {
+  const Unpack up{g.ext[0], g.ext[1]};
+  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  const double hs = std::min({h0, h1, h2});
+  Kokkos::parallel_for(
+      "reinit_prepare", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
+        int i, j, k;
+        up(b.cell(q), i, j, k);
+        const double p0 = psi0(i, j, k);
+        b.sgn(q) = p0 / std::sqrt(p0 * p0 + hs * hs);
+        const double nb[3][2] = {{psi0(i - 1, j, k), psi0(i + 1, j, k)},
+                                 {psi0(i, j - 1, k), psi0(i, j + 1, k)},
+                                 {psi0(i, j, k - 1), psi0(i, j, k + 1)}};
+        const double far[3][2] = {{psi0(i - 2, j, k), psi0(i + 2, j, k)},
+                                  {psi0(i, j - 2, k), psi0(i, j + 2, k)},
+                                  {psi0(i, j, k - 2), psi0(i, j, k + 2)}};
+        const double hd[3] = {h0, h1, h2};
+        bool iface = false, inside = true;
+        int eno = 0;
+        double g2 = 0;
+        for (int d = 0; d < 3; ++d) {
+          const double m = nb[d][0], p = nb[d][1];
+          iface = iface || p0 * m <= 0 || p0 * p <= 0;
+          const bool in1 = std::fabs(m) < band && std::fabs(p) < band;
+          inside = inside && in1;
+          if (in1 && std::fabs(far[d][0]) < band && std::fabs(far[d][1]) < band) eno |= kEno << d;
+          double del = std::fabs(p - m) * 0.5;
+          del = std::fmax(del, std::fmax(std::fabs(p - p0), std::fabs(p0 - m)));
+          g2 += (del / hd[d]) * (del / hd[d]);
+        }
+        b.flags(q) = (iface ? kInterface : 0) | (!iface && inside ? kInterior : 0) | eno;
+        // Used only next to the interface, where it is ~ psi0; clamped for safety.
+        const double D = g2 > 0 ? p0 / std::sqrt(g2) : p0;
+        b.dist(q) = std::fmax(-band, std::fmin(band, D));
+        double coef = 0;
+        if (constraint && dH(i, j, k) > 0) {
+          auto gradMag = [&](int a, int c, int e) {
+            const double gx = (psi0(a + 1, c, e) - psi0(a - 1, c, e)) / (2 * h0);
+            const double gy = (psi0(a, c + 1, e) - psi0(a, c - 1, e)) / (2 * h1);
+            const double gz = (psi0(a, c, e + 1) - psi0(a, c, e - 1)) / (2 * h2);
+            return std::sqrt(gx * gx + gy * gy + gz * gz);
+          };
+          const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
+          double den = 0;
+          for (int c = -1; c <= 1; ++c)
+            for (int bb = -1; bb <= 1; ++bb)
+              for (int a = -1; a <= 1; ++a) {
+                const double dn = dH(i + a, j + bb, k + c);
+                if (dn > 0) den += w[a + 1] * w[bb + 1] * w[c + 1] * dn * dn * gradMag(i + a, j + bb, k + c);
+              }
+          const double f = dH(i, j, k) * gradMag(i, j, k);
+          // den >= w_c^3 H'_c f_c, so den ~ 0 only where f_c ~ 0 too: lambda = 0 there.
+          coef = den > 1e-300 ? f / den : 0.0;
+        }
+        b.coef(q) = coef;
+      });
+}
+
+// One RK stage of Eq. (17) on the band: out = alpha base + (1 - alpha)(in + dtau R(in)).
+// Needs `in` on 2 fresh ghost layers; reads `base` and writes `out` only at the cell
+// itself, so out may alias base (not in).
+inline void eikonalStage(const Grid& g, const BandViews& b, int n, const Field& in, const Field& base,
+                         const Field& out, double alpha, double dtau, bool subcell) {
+  const Unpack up{g.ext[0], g.ext[1]};
+  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  const double hmin = std::min({h0, h1, h2});
+  Kokkos::parallel_for(
+      "reinit_stage", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
+        int i, j, k;
+        up(b.cell(q), i, j, k);
+        const double p0 = in(i, j, k), s = b.sgn(q);
+        double rate;
+        if (subcell && (b.flags(q) & kInterface)) {
+          // Russo-Smereka write -(sgn(psi0)|psi| - D)/h; equal while psi keeps the
+          // sign of psi0, but with psi0 ~ 0 the constraint can push psi across zero
+          // and that form then grows exponentially. (D - psi)/h relaxes either way.
+          rate = (b.dist(q) - p0) / hmin;
+        } else {
+          const int fl = b.flags(q);
+          double dm, dp, g2 = 0;
+          eno2(in(i - 2, j, k), in(i - 1, j, k), p0, in(i + 1, j, k), in(i + 2, j, k), h0, fl & kEno, dm, dp);
+          g2 += godunov2(s, dm, dp);
+          eno2(in(i, j - 2, k), in(i, j - 1, k), p0, in(i, j + 1, k), in(i, j + 2, k), h1, fl & (kEno << 1), dm, dp);
+          g2 += godunov2(s, dm, dp);
+          eno2(in(i, j, k - 2), in(i, j, k - 1), p0, in(i, j, k + 1), in(i, j, k + 2), h2, fl & (kEno << 2), dm, dp);
+          g2 += godunov2(s, dm, dp);
+          rate = s * (1 - std::sqrt(g2));
+        }
+        out(i, j, k) = alpha * base(i, j, k) + (1 - alpha) * (p0 + dtau * rate);
+      });
+}
+
+// Eq. (19)-(21): out_c = psiT_c - coef_c SUM_27 w H'(psi0) (psiT - psiM).
+// psiT (psi~) and psiM (psi^m) need 1 fresh ghost layer; out must alias neither.
+inline void applyConstraint(const Grid& g, const BandViews& b, int n, const Field& psiT, const Field& psiM,
+                            const Field& dH, const Field& out) {
+  const Unpack up{g.ext[0], g.ext[1]};
+  Kokkos::parallel_for(
+      "reinit_constraint", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
+        int i, j, k;
+        up(b.cell(q), i, j, k);
+        const double coef = b.coef(q);
+        double num = 0;
+        if (coef != 0) {
+          const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
+          for (int c = -1; c <= 1; ++c)
+            for (int bb = -1; bb <= 1; ++bb)
+              for (int a = -1; a <= 1; ++a) {
+                const double dn = dH(i + a, j + bb, k + c);
+                if (dn > 0)
+                  num += w[a + 1] * w[bb + 1] * w[c + 1] * dn *
+                         (psiT(i + a, j + bb, k + c) - psiM(i + a, j + bb, k + c));
+              }
+        }
+        out(i, j, k) = psiT(i, j, k) - coef * num;
+      });
+}
+
+inline void copyBand(const Grid& g, const BandViews& b, int n, const Field& src, const Field& dst) {
+  const Unpack up{g.ext[0], g.ext[1]};
+  Kokkos::parallel_for(
+      "reinit_copy", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
+        int i, j, k;
+        up(b.cell(q), i, j, k);
+        dst(i, j, k) = src(i, j, k);
+      });
+}
+
+// Local max ||grad psi| - 1| (central differences) over kInterior band cells
+// with |psi| <= band - 2 hmin: frozen cells only feed values >= band into the
+// band (they hold |psi0| >= band), so closer in psi is the distance to the
+// interface, and the kinks where the two meet stay out of the measure.
+// psi needs 1 fresh ghost layer.
+inline double maxGradError(const Grid& g, const BandViews& b, int n, const Field& psi, double band) {
+  const Unpack up{g.ext[0], g.ext[1]};
+  const double i0 = 0.5 / g.h[0], i1 = 0.5 / g.h[1], i2 = 0.5 / g.h[2];
+  const double lim = band - 2 * std::min({g.h[0], g.h[1], g.h[2]});
+  double m = 0;
+  Kokkos::parallel_reduce(
+      "reinit_grad_error", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int q, double& acc) {
+        if (!(b.flags(q) & kInterior)) return;
+        int i, j, k;
+        up(b.cell(q), i, j, k);
+        if (std::fabs(psi(i, j, k)) > lim) return;
+        const double gx = (psi(i + 1, j, k) - psi(i - 1, j, k)) * i0;
+        const double gy = (psi(i, j + 1, k) - psi(i, j - 1, k)) * i1;
+        const double gz = (psi(i, j, k + 1) - psi(i, j, k - 1)) * i2;
+        const double e = std::fabs(std::sqrt(gx * gx + gy * gy + gz * gz) - 1);
+        if (e > acc || e != e) acc = e;
+      },
+      Kokkos::Max<double>(m));
+  return m > 0 ? m : 0.0; // the Max identity is -DBL_MAX when no cell qualifies
+}
+
+} // namespace reinit
+} // namespace voigt

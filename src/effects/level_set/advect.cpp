@@ -1,0 +1,62 @@
+// Level-set stages.
+//   Advection, Eq. (1): dpsi/dt = -v . grad psi, in the conservative form
+//     dpsi/dt = -[div(v psi) - psi div_h v]        (kernels/levelset.hpp)
+//   with SSP-RK2 (Heun) and the velocity frozen at u^n:
+//     psi1 = psi^n + dt R(psi^n);  psi^{n+1} = (psi^n + psi1 + dt R(psi1)) / 2
+//   Properties, Eq. (2)-(4): rho = H rho_1 + (1 - H) rho_2, same for mu.
+#include <cmath>
+
+#include "effects/level_set/level_set.hpp"
+#include "kernels/levelset.hpp"
+#include "kernels/reductions.hpp"
+
+namespace voigt {
+
+void LevelSet::advect(State& st) {
+  const Grid& g = st.grid;
+  const Range3 cells = cellRange(g);
+  Field psi = st.fields.scalar("psi"), old = st.fields.scalar("psi_old"), rhs = st.fields.scalar("psi_rhs");
+  VecField u = st.fields.vector("velocity");
+  st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
+  const double dt = st.dt;
+  Kokkos::deep_copy(old, psi);
+  for (int stage = 0; stage < 2; ++stage) {
+    refreshGhosts(st, psi);
+    Kokkos::deep_copy(rhs, 0.0);
+    addCellAdvection(g, psi, u, rhs, cells, limiter_);
+    const double a = stage == 0 ? 1.0 : 0.5;
+    Kokkos::parallel_for(
+        "level_set_rk2", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          psi(i, j, k) = (1 - a) * old(i, j, k) + a * (psi(i, j, k) + dt * rhs(i, j, k));
+        });
+  }
+  refreshGhosts(st, psi);
+}
+
+void LevelSet::blend(State& st) {
+  if (!st.fields.allocated("density")) return; // kinematic scenes: nothing to blend
+  const Grid& g = st.grid;
+  blendProperties(st.fields.scalar("psi"), geo_.kappa(g), rho1_, rho2_, mu1_, mu2_, st.fields.scalar("density"),
+                  st.fields.scalar("viscosity"), cellRange(g, g.ng));
+  st.propertiesChanged = true;
+}
+
+void LevelSet::diagnose(State& st) {
+  const Grid& g = st.grid;
+  PhaseMeasures m = localPhaseMeasures(g, st.fields.scalar("psi"), geo_.kappa(g));
+  double loc[3] = {m.volume, m.sharpVolume, m.area}, glob[3];
+  MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
+  volume_ = glob[0];
+  sharpVolume_ = glob[1];
+  area_ = glob[2];
+  double total = 1;
+  for (int d = 0; d < 3; ++d) total *= g.hi[d] - g.lo[d];
+  const double drift = volume0_ != 0 ? volume_ / volume0_ - 1 : 0;
+  driftMax_ = std::max(driftMax_, std::abs(drift));
+  st.diag["volume_" + phase_] = volume_;
+  st.diag["volume_" + scene_->fluid] = total - volume_;
+  st.diag["volume_drift"] = drift;
+  st.diag["interface_area"] = area_;
+}
+
+} // namespace voigt

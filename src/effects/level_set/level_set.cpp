@@ -1,0 +1,87 @@
+// level_set: scene section, fields, the initial shape and its signed distance.
+#include "effects/level_set/level_set.hpp"
+
+#include <cmath>
+
+#include "core/boundary.hpp"
+#include "scene/reader.hpp"
+
+namespace voigt {
+
+std::unique_ptr<Effect> makeLevelSet() { return std::make_unique<LevelSet>(); }
+
+void LevelSet::configure(const Scene& s) {
+  scene_ = &s;
+  geo_ = levelSetGeometry(s);
+  const Section ls = topSection(s, "level_set");
+  ls.number("smoothing", 0); // validated by levelSetGeometry
+  ls.number("band", 0);
+  if (!ls.has("phase")) ls.fail("phase", "is required: the material where psi > 0");
+  phase_ = ls.string("phase", "");
+  if (!s.materials.count(phase_)) ls.fail("phase", "names no material in 'materials'");
+  if (phase_ == s.fluid) ls.fail("phase", "must differ from 'fluid' (" + s.fluid + "), the material where psi < 0");
+  rho1_ = s.materials.at(phase_).density;
+  mu1_ = s.materials.at(phase_).viscosity;
+  rho2_ = s.fluidMaterial().density;
+  mu2_ = s.fluidMaterial().viscosity;
+  fastMarching_ = ls.boolean("fast_marching", true);
+  shape_ = compileShape(ls, "shape", s);
+  ls.finish();
+  const std::string& l = s.advection.limiter;
+  limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
+                                                                                       : Limiter::MinMod;
+}
+
+void LevelSet::declareFields(FieldStore& f) const {
+  f.declare("psi", Centring::Cell, 1, name());
+  f.declare("psi_old", Centring::Cell, 1, name());
+  f.declare("psi_rhs", Centring::Cell, 1, name());
+}
+
+void LevelSet::refreshGhosts(State& st, const Field& f) const {
+  st.halo->exchange(f);
+  fillCellGhostsEven(st.grid, f);
+}
+
+void LevelSet::setup(State& st) {
+  Field psi = st.fields.scalar("psi");
+  evaluateShape(st.grid, shape_, psi);
+  if (fastMarching_) fm_ = fastMarching(st.grid, psi);
+  refreshGhosts(st, psi);
+  blend(st);
+  diagnose(st);
+  volume0_ = volume_;
+  sharpVolume0_ = sharpVolume_;
+  driftMax_ = 0;
+  st.diag["volume_drift"] = 0;
+}
+
+void LevelSet::registerTasks(Pipeline& p) {
+  p.add(Stage::Properties, name(), "density and viscosity from H(psi), Eq. (2)-(4)", [this](State& st) { blend(st); });
+  p.add(Stage::Advection, name(), "psi: SSP-RK2 + MUSCL/KT, Eq. (1)", [this](State& st) { advect(st); });
+  p.add(Stage::Diagnostics, name(), "phase volumes, drift, interface area", [this](State& st) { diagnose(st); });
+}
+
+void LevelSet::summary(const State& st, nlohmann::json& j) const {
+  double total = 1;
+  for (int d = 0; d < 3; ++d) total *= st.grid.hi[d] - st.grid.lo[d];
+  j["volume_per_phase"] = {{phase_, volume_}, {scene_->fluid, total - volume_}};
+  j["level_set"] = {{"phase", phase_},
+                    {"smoothing_cells", geo_.kappaCells},
+                    {"band_cells", geo_.bandCells},
+                    {"shape", shape_.text},
+                    {"volume_initial", volume0_},
+                    {"volume", volume_},
+                    {"volume_drift", volume0_ != 0 ? volume_ / volume0_ - 1 : volume_},
+                    {"volume_drift_max_abs", driftMax_},
+                    {"sharp_volume_initial", sharpVolume0_},
+                    {"sharp_volume", sharpVolume_},
+                    {"interface_area", area_},
+                    {"fast_marching",
+                     {{"enabled", fastMarching_},
+                      {"initial_cells", fm_.initialCells},
+                      {"accepted_cells", fm_.acceptedCells},
+                      {"seconds", fm_.seconds}}}};
+}
+
+} // namespace voigt

@@ -1,0 +1,82 @@
+#include "levelset/reinit.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "core/boundary.hpp"
+
+namespace voigt {
+
+Reinitializer::Reinitializer(const Grid& g, ReinitParams p) : g_(&g), p_(p) {
+  if (p_.iterations < 0) throw std::invalid_argument("reinit: iterations must be >= 0");
+  if (!(p_.dtauCells > 0 && p_.dtauCells <= 1)) throw std::invalid_argument("reinit: dtau must be in (0, 1] cells");
+  if (!(p_.band > 0)) throw std::invalid_argument("reinit: band must be > 0");
+  // band >= kappa keeps H'(psi0) = 0 on every frozen cell, so the Eq. (21)
+  // integrals see only cells that the constraint also corrects.
+  if (p_.volumeConstraint && !(p_.kappa > 0 && p_.kappa <= p_.band))
+    throw std::invalid_argument("reinit: the volume constraint needs 0 < kappa <= band");
+  psi1_ = Field("reinit_psi1", g.ext[0], g.ext[1], g.ext[2]);
+  psiT_ = Field("reinit_psiT", g.ext[0], g.ext[1], g.ext[2]);
+  dH_ = Field("reinit_dH", g.ext[0], g.ext[1], g.ext[2]);
+  const size_t cap = size_t(g.cellsOwned());
+  band_.cell = reinit::IntList("reinit_band", cap);
+  band_.flags = reinit::IntList("reinit_flags", cap);
+  band_.sgn = reinit::RealList("reinit_sgn", cap);
+  band_.dist = reinit::RealList("reinit_dist", cap);
+  band_.coef = reinit::RealList("reinit_coef", cap);
+}
+
+void Reinitializer::refresh(Halo& halo, const Field& f) const {
+  halo.exchange(f);
+  fillCellGhostsEven(*g_, f);
+}
+
+ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
+  using namespace reinit;
+  const Grid& g = *g_;
+  Kokkos::fence();
+  const double t0 = MPI_Wtime();
+  const double hmin = std::min({g.h[0], g.h[1], g.h[2]});
+  const double dtau = p_.dtauCells * hmin;
+  const bool con = p_.volumeConstraint;
+
+  // psi0 = psi. The stage fields start as copies, so the stencils read the frozen
+  // values wherever the band kernels do not write.
+  refresh(halo, psi);
+  const int n = buildBandList(g, psi, p_.band, band_.cell);
+  Kokkos::deep_copy(psi1_, psi);
+  if (con) {
+    Kokkos::deep_copy(psiT_, psi);
+    deltaField(g, psi, dH_, p_.kappa);
+  }
+  prepareBand(g, band_, n, psi, dH_, p_.band, con);
+
+  for (int m = 0; m < p_.iterations; ++m) {
+    // psi (= psi^m) is fresh here.
+    eikonalStage(g, band_, n, psi, psi, psi1_, 0.0, dtau, p_.subcellFix);
+    refresh(halo, psi1_);
+    if (!con) {
+      eikonalStage(g, band_, n, psi1_, psi, psi, 0.5, dtau, p_.subcellFix);
+    } else {
+      eikonalStage(g, band_, n, psi1_, psi, psiT_, 0.5, dtau, p_.subcellFix);
+      refresh(halo, psiT_);
+      applyConstraint(g, band_, n, psiT_, psi, dH_, psi1_); // psi1 is free again
+      copyBand(g, band_, n, psi1_, psi);
+    }
+    refresh(halo, psi);
+  }
+
+  ReinitStats st;
+  long long local = n;
+  MPI_Allreduce(&local, &st.bandCells, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
+  double ge = maxGradError(g, band_, n, psi, p_.band);
+  MPI_Allreduce(&ge, &st.maxGradError, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  Kokkos::fence();
+  st.seconds = MPI_Wtime() - t0;
+  return st;
+}
+
+} // namespace voigt

@@ -1,0 +1,258 @@
+// Implicit-surface shapes: scene -> postfix program -> Kokkos kernel.
+#include "levelset/shapes.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace voigt {
+
+namespace {
+
+struct Compiler {
+  const Scene& scene;
+  std::vector<ShapeOp> ops;
+  std::vector<std::array<double, 4>> spheres;
+  int depth = 0, maxDepth = 0;
+
+  void push() { maxDepth = std::max(maxDepth, ++depth); }
+
+  void loadPacking(const Section& s, ShapeOp& op) {
+    if (!s.has("file")) s.fail("file", "is required (a CSV of sphere centres x,y,z and radii r)");
+    std::string file = s.string("file", "");
+    namespace fs = std::filesystem;
+    fs::path p(file);
+    if (p.is_relative() && !scene.path.empty()) p = fs::path(scene.path).parent_path() / p;
+    std::ifstream in(p);
+    if (!in) s.fail("file", "cannot open '" + p.string() + "'");
+    const bool hasR = s.has("radius");
+    const double rDef = s.number("radius", 0, Range::positive());
+    op.n = int(spheres.size());
+    std::string line;
+    for (int ln = 1; std::getline(in, line); ++ln) {
+      auto bad = [&](const std::string& m) { s.fail("file", p.string() + ":" + std::to_string(ln) + ": " + m); };
+      if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '#')
+        continue;
+      for (char& c : line)
+        if (c == ',' || c == ';' || c == '\t') c = ' ';
+      std::istringstream is(line);
+      std::vector<double> v;
+      std::string tok;
+      while (is >> tok) {
+        char* end = nullptr;
+        const double x = std::strtod(tok.c_str(), &end);
+        if (*end != '\0' || !std::isfinite(x)) {
+          if (ln == 1 && spheres.size() == size_t(op.n) && v.empty()) break; // header line
+          bad("'" + tok + "' is not a finite number");
+        }
+        v.push_back(x);
+      }
+      if (v.empty()) continue;
+      if (v.size() == 3 && hasR) v.push_back(rDef);
+      if (v.size() != 4) bad("expected x, y, z, r (or x, y, z with 'radius' set), got " + std::to_string(v.size()) + " values");
+      if (!(v[3] > 0)) bad("radius must be > 0");
+      spheres.push_back({v[0], v[1], v[2], v[3]});
+    }
+    op.m = int(spheres.size()) - op.n;
+    if (op.m == 0) s.fail("file", "'" + p.string() + "' holds no spheres");
+  }
+
+  // Compiles one shape map; returns its description.
+  std::string compile(const Section& s, int level) {
+    if (level > 16) s.fail("type", "shapes nest too deeply (more than 16 levels)");
+    if (!s.has("type")) s.fail("type", "is required (sphere, box, plane, wave, cylinder, superquadric, sphere_packing, union, intersection, complement)");
+    const std::string t = s.choice("type", "", {"sphere", "box", "plane", "wave", "cylinder", "superquadric", "sphere_packing",
+                                                 "union", "intersection", "complement"});
+    ShapeOp op;
+    std::ostringstream d;
+    auto vec = [&](const char* key, int at, Range r = {}) {
+      if (!s.has(key)) s.fail(key, "is required for a " + t);
+      auto v = s.vec3(key, {}, r);
+      for (int c = 0; c < 3; ++c) op.a[at + c] = v[c];
+    };
+    if (t == "union" || t == "intersection") {
+      op.kind = t == "union" ? ShapeKind::Union : ShapeKind::Intersection;
+      auto list = s.list("of");
+      if (list.size() < 2) s.fail("of", "needs a list of at least two shapes");
+      d << t << "(";
+      for (size_t i = 0; i < list.size(); ++i) d << (i ? ", " : "") << compile(list[i], level + 1);
+      d << ")";
+      op.n = int(list.size());
+      depth -= op.n - 1;
+    } else if (t == "complement") {
+      op.kind = ShapeKind::Complement;
+      if (!s.has("of")) s.fail("of", "is required: the shape to complement");
+      d << "complement(" << compile(s.section("of"), level + 1) << ")";
+    } else {
+      push();
+      if (t == "sphere") {
+        op.kind = ShapeKind::Sphere;
+        vec("center", 0);
+        op.a[3] = s.requireNumber("radius", Range::positive());
+      } else if (t == "box") {
+        op.kind = ShapeKind::Box;
+        vec("lo", 0);
+        vec("hi", 3);
+        for (int c = 0; c < 3; ++c) {
+          if (!(op.a[3 + c] > op.a[c])) s.fail("hi", "must be greater than lo in every component");
+          const double lo = op.a[c], hi = op.a[3 + c];
+          op.a[c] = 0.5 * (lo + hi);
+          op.a[3 + c] = 0.5 * (hi - lo);
+        }
+      } else if (t == "plane") {
+        op.kind = ShapeKind::Plane;
+        vec("point", 0);
+        vec("normal", 3);
+        const double nn = std::sqrt(op.a[3] * op.a[3] + op.a[4] * op.a[4] + op.a[5] * op.a[5]);
+        if (!(nn > 0)) s.fail("normal", "must not be zero");
+        for (int c = 3; c < 6; ++c) op.a[c] /= nn;
+      } else if (t == "wave") {
+        op.kind = ShapeKind::Wave;
+        vec("point", 0);
+        vec("normal", 3);
+        vec("direction", 7);
+        op.a[6] = s.requireNumber("amplitude");
+        const double len = s.requireNumber("wavelength", Range::positive());
+        double nn = 0, dd = 0, nd = 0;
+        for (int c = 0; c < 3; ++c) nn += op.a[3 + c] * op.a[3 + c], dd += op.a[7 + c] * op.a[7 + c];
+        if (!(nn > 0)) s.fail("normal", "must not be zero");
+        if (!(dd > 0)) s.fail("direction", "must not be zero");
+        for (int c = 0; c < 3; ++c) op.a[3 + c] /= std::sqrt(nn), op.a[7 + c] /= std::sqrt(dd);
+        for (int c = 0; c < 3; ++c) nd += op.a[3 + c] * op.a[7 + c];
+        if (std::fabs(nd) > 1e-12) s.fail("direction", "must be perpendicular to the normal");
+        op.a[10] = 2 * M_PI / len;
+      } else if (t == "cylinder") {
+        op.kind = ShapeKind::Cylinder;
+        vec("center", 0);
+        op.a[3] = s.requireNumber("radius", Range::positive());
+        op.a[4] = 0.5 * s.number("length", INFINITY, Range::positive());
+        op.m = s.choice("axis", "z", {"x", "y", "z"})[0] - 'x';
+      } else if (t == "superquadric") {
+        op.kind = ShapeKind::Superquadric;
+        vec("center", 0);
+        vec("semi_axes", 3, Range::positive());
+        op.a[6] = s.requireNumber("exponent", {1, 100, false, false});
+      } else {
+        op.kind = ShapeKind::Packing;
+        loadPacking(s, op);
+      }
+      d << t;
+    }
+    s.finish();
+    ops.push_back(op);
+    return d.str();
+  }
+};
+
+// Value of one primitive at x (positive inside).
+KOKKOS_INLINE_FUNCTION double primitive(const ShapeOp& op, const Kokkos::View<double* [4], MemSpace>& sp,
+                                        const double x[3]) {
+  const double* a = op.a;
+  switch (op.kind) {
+    case ShapeKind::Plane:
+      return -((x[0] - a[0]) * a[3] + (x[1] - a[1]) * a[4] + (x[2] - a[2]) * a[5]);
+    case ShapeKind::Wave: {
+      double dn = 0, ds = 0;
+      for (int c = 0; c < 3; ++c) dn += (x[c] - a[c]) * a[3 + c], ds += (x[c] - a[c]) * a[7 + c];
+      return -(dn - a[6] * std::cos(a[10] * ds));
+    }
+    case ShapeKind::Sphere: {
+      const double d0 = x[0] - a[0], d1 = x[1] - a[1], d2 = x[2] - a[2];
+      return a[3] - std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    }
+    case ShapeKind::Box: { // exact signed distance to a box
+      double out = 0, in = -1e300;
+      for (int c = 0; c < 3; ++c) {
+        const double q = std::fabs(x[c] - a[c]) - a[3 + c];
+        if (q > 0) out += q * q;
+        in = q > in ? q : in;
+      }
+      return -(std::sqrt(out) + (in < 0 ? in : 0));
+    }
+    case ShapeKind::Cylinder: { // capped cylinder: a 2-D box in (radial, axial)
+      double r2 = 0;
+      for (int c = 0; c < 3; ++c)
+        if (c != op.m) r2 += (x[c] - a[c]) * (x[c] - a[c]);
+      const double qr = std::sqrt(r2) - a[3], qa = std::fabs(x[op.m] - a[op.m]) - a[4];
+      const double out = std::sqrt((qr > 0 ? qr * qr : 0) + (qa > 0 ? qa * qa : 0));
+      const double in = qr > qa ? qr : qa;
+      return -(out + (in < 0 ? in : 0));
+    }
+    case ShapeKind::Superquadric: {
+      // Same zero set as 1 - sum|x_i/a_i|^p (Eq. 22, negated), written as a
+      // p-norm so |grad| ~ 1 near the surface: Fast Marching starts from a
+      // linear interpolation of the crossing, which a steep x^8 would spoil.
+      double s = 0, amin = a[3];
+      for (int c = 0; c < 3; ++c) {
+        s += std::pow(std::fabs(x[c] - a[c]) / a[3 + c], a[6]);
+        amin = a[3 + c] < amin ? a[3 + c] : amin;
+      }
+      return amin * (1 - std::pow(s, 1 / a[6]));
+    }
+    case ShapeKind::Packing: {
+      double best = -1e300;
+      for (int q = op.n; q < op.n + op.m; ++q) {
+        const double d0 = x[0] - sp(q, 0), d1 = x[1] - sp(q, 1), d2 = x[2] - sp(q, 2);
+        const double v = sp(q, 3) - std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        best = v > best ? v : best;
+      }
+      return best;
+    }
+    default:
+      return 0;
+  }
+}
+
+} // namespace
+
+ShapeProgram compileShape(const Section& parent, const std::string& key, const Scene& scene) {
+  if (!parent.has(key)) parent.fail(key, "is required: the initial shape of phase 1 (psi > 0)");
+  Compiler c{scene};
+  ShapeProgram p;
+  p.text = c.compile(parent.section(key), 0);
+  if (c.maxDepth > kShapeStack) parent.fail(key, "the shape needs too many simultaneous operands (max 32)");
+  p.ops = Kokkos::View<ShapeOp*, MemSpace>("shape_ops", c.ops.size());
+  auto ho = Kokkos::create_mirror_view(p.ops);
+  for (size_t i = 0; i < c.ops.size(); ++i) ho(i) = c.ops[i];
+  Kokkos::deep_copy(p.ops, ho);
+  p.spheres = Kokkos::View<double* [4], MemSpace>("shape_spheres", c.spheres.size());
+  auto hs = Kokkos::create_mirror_view(p.spheres);
+  for (size_t i = 0; i < c.spheres.size(); ++i)
+    for (int q = 0; q < 4; ++q) hs(i, q) = c.spheres[i][q];
+  Kokkos::deep_copy(p.spheres, hs);
+  p.sphereCount = (long long)c.spheres.size();
+  return p;
+}
+
+void evaluateShape(const Grid& g, const ShapeProgram& p, const Field& f) {
+  auto ops = p.ops;
+  auto sp = p.spheres;
+  const int nops = int(ops.extent(0)), ng = g.ng;
+  const double lo0 = g.lo[0], lo1 = g.lo[1], lo2 = g.lo[2], h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  const int c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
+  Kokkos::parallel_for(
+      "evaluate_shape", Policy3({0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double x[3] = {lo0 + (i - ng + c0 + 0.5) * h0, lo1 + (j - ng + c1 + 0.5) * h1,
+                             lo2 + (k - ng + c2 + 0.5) * h2};
+        double st[kShapeStack];
+        int top = 0;
+        for (int q = 0; q < nops; ++q) {
+          const ShapeOp& op = ops(q);
+          if (op.kind == ShapeKind::Union || op.kind == ShapeKind::Intersection) {
+            double v = st[top - op.n];
+            for (int r = top - op.n + 1; r < top; ++r)
+              v = op.kind == ShapeKind::Union ? (st[r] > v ? st[r] : v) : (st[r] < v ? st[r] : v);
+            top -= op.n;
+            st[top++] = v;
+          } else if (op.kind == ShapeKind::Complement) {
+            st[top - 1] = -st[top - 1];
+          } else {
+            st[top++] = primitive(op, sp, x);
+          }
+        }
+        f(i, j, k) = st[0];
+      });
+}
+
+} // namespace voigt
