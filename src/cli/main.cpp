@@ -75,7 +75,13 @@ int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   int code = 0;
   {
-    Kokkos::ScopeGuard kokkos(argc, argv);
+    // Kokkos sees only its own --kokkos-* options: a plain --help is ours.
+    std::vector<char*> kargv{argv[0]}, appArgv{argv[0]};
+    for (int i = 1; i < argc; ++i)
+      (std::string(argv[i]).rfind("--kokkos-", 0) == 0 ? kargv : appArgv).push_back(argv[i]);
+    int kargc = int(kargv.size());
+    kargv.push_back(nullptr);
+    Kokkos::ScopeGuard kokkos(kargc, kargv.data());
     CLI::App app{"Voigt: fluids and elastic solids on one Eulerian grid"};
     app.require_subcommand(1);
     std::string scenePath, outDir;
@@ -95,7 +101,7 @@ int main(int argc, char** argv) {
     checkCmd->add_option("--set", sets, "override a scene value: a.b.c=value");
     app.add_subcommand("info", "version, Kokkos backend, MPI ranks");
     try {
-      app.parse(argc, argv);
+      app.parse(int(appArgv.size()), appArgv.data());
       if (app.got_subcommand("info")) {
         code = info();
       } else {

@@ -222,6 +222,11 @@ ShapeProgram compileShape(const Section& parent, const std::string& key, const S
     for (int q = 0; q < 4; ++q) hs(i, q) = c.spheres[i][q];
   Kokkos::deep_copy(p.spheres, hs);
   p.sphereCount = (long long)c.spheres.size();
+  auto exact = [](ShapeKind k) {
+    return k == ShapeKind::Sphere || k == ShapeKind::Box || k == ShapeKind::Plane || k == ShapeKind::Cylinder;
+  };
+  p.exactDistance = (c.ops.size() == 1 && exact(c.ops[0].kind)) ||
+                    (c.ops.size() == 2 && exact(c.ops[0].kind) && c.ops[1].kind == ShapeKind::Complement);
   return p;
 }
 

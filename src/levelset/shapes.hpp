@@ -42,6 +42,9 @@ struct ShapeProgram {
   Kokkos::View<double* [4], MemSpace> spheres; // packing centres and radii
   std::string text;                             // one-line description for `voigt check`
   long long sphereCount = 0;
+  // A single sphere, box, plane or cylinder (or its complement) is already an
+  // exact signed distance: Fast Marching can only blur its edges.
+  bool exactDistance = false;
 };
 
 // Reads `shape` from a section (the level_set section). CSV paths are relative

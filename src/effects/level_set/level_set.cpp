@@ -24,8 +24,9 @@ void LevelSet::configure(const Scene& s) {
   mu1_ = s.materials.at(phase_).viscosity;
   rho2_ = s.fluidMaterial().density;
   mu2_ = s.fluidMaterial().viscosity;
-  fastMarching_ = ls.boolean("fast_marching", true);
   shape_ = compileShape(ls, "shape", s);
+  // Default: march unless the shape is already an exact distance.
+  fastMarching_ = ls.boolean("fast_marching", !shape_.exactDistance);
   ls.finish();
   const std::string& l = s.advection.limiter;
   limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
