@@ -32,6 +32,9 @@ class Reinit : public Effect {
     p_.kappa = geo_.kappa(st.grid);
     p_.band = geo_.band(st.grid);
     re_ = std::make_unique<Reinitializer>(st.grid, p_);
+    // Time-series columns are fixed at the first row: declare ours now.
+    st.diag["reinit_band_cells"] = 0.0;
+    st.diag["reinit_grad_error"] = 0.0;
   }
   void registerTasks(Pipeline& p) override {
     // The step counter increments after the stages, so step + 1 steps have
@@ -42,6 +45,7 @@ class Reinit : public Effect {
       ++calls_;
       bandTotal_ += double(s.bandCells);
       st.diag["reinit_band_cells"] = double(s.bandCells);
+      st.diag["reinit_grad_error"] = s.maxGradError;
       st.counters["reinit_calls"] += 1;
       st.counters["reinit_band_cells_total"] += double(s.bandCells);
     });

@@ -12,8 +12,8 @@ namespace {
 
 struct Compiler {
   const Scene& scene;
-  std::vector<ShapeOp> ops;
-  std::vector<std::array<double, 4>> spheres;
+  std::vector<ShapeOp> ops{};
+  std::vector<std::array<double, 4>> spheres{};
   int depth = 0, maxDepth = 0;
 
   void push() { maxDepth = std::max(maxDepth, ++depth); }

@@ -1,0 +1,465 @@
+// Level-set transport by a prescribed velocity (prescribed_flow + level_set,
+// with and without reinit): Zalesak's slotted disk after one rotation and the
+// LeVeque single vortex, deformed and reversed. 2-D problems on a z extent of
+// 2 cubic cells (periodic z, `ranks: [0, 0, 1]`: MPI never splits z).
+// Measured numbers are printed on rank 0 and recorded in the GoogleTest XML;
+// cases/zalesak/README.md and cases/single_vortex/README.md hold the tables.
+//
+// Measures, all with the sharp Heaviside at cell centres:
+//   area change  sharp_volume / sharp_volume_initial - 1 (level_set summary);
+//                the smoothed H-volume change ("H-area") is reported alongside;
+//   shape error  E = (1/L) sum |H(psi_exact) - H(psi)| dA, a length (also given
+//                in cells, E/h); L is the exact perimeter, psi_exact the exact
+//                shape at the cell centres (E = 0 at t = 0).
+//   filament     at T/2 of the vortex (maximum stretching): the exact interface
+//                is traced from the initial circle with RK4 markers; width =
+//                2 area / length (a thin strip's mean width, length from the
+//                diag interface_area) and max psi (the half width where psi is a
+//                distance, i.e. in a filament thinner than the narrow band).
+//
+// Reinit runs use the reinit defaults (every step, 2 iterations, dtau 0.5 cells,
+// no subcell fix) with volume_constraint true ("constrained") or false.
+// Literature: the published tables (Enright et al. 2002; Sussman & Fatemi 1999)
+// could not be read from the stored copies available here (only their opening
+// pages), so no published numbers are quoted; see the case READMEs.
+//
+// Bounds: each is the measured value (Release; 1 and 2 ranks give the same
+// numbers) times the factor stated next to it, so a regression of that size
+// fails. They are not tuned to the literature. VOIGT_LONG=1 adds the finer
+// grids and the full T = 8 vortex (README numbers).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/index_space.hpp"
+#include "kernels/heaviside.hpp"
+#include "support/flow.hpp"
+
+using namespace voigt;
+
+namespace {
+
+bool longRuns() {
+  const char* v = std::getenv("VOIGT_LONG");
+  return v && std::string(v) == "1";
+}
+
+bool rank0() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r == 0;
+}
+
+enum class Mode { NoReinit, Constrained, Unconstrained };
+const char* modeName(Mode m) {
+  return m == Mode::NoReinit ? "no_reinit" : m == Mode::Constrained ? "constrained" : "unconstrained";
+}
+std::string effectsFor(Mode m) {
+  if (m == Mode::NoReinit) return "effects: [prescribed_flow, level_set]\n";
+  return std::string("effects: [prescribed_flow, level_set, reinit]\n") +
+         (m == Mode::Constrained ? "reinit: {volume_constraint: true}\n" : "reinit: {volume_constraint: false}\n");
+}
+
+// A square [0, side]^2 of n^2 cells, 2 cubic cells along periodic z.
+std::string domain(double side, int n) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "domain: {lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], cells: [%d, %d, 2], ranks: [0, 0, 1]}\n"
+                "boundaries: {default: {type: slip}, z-: {type: periodic}, z+: {type: periodic}}\n",
+                side, side, 2 * side / n, n, n);
+  return buf;
+}
+
+// ---- Zalesak's slotted disk ----------------------------------------------------
+// Zalesak (1979), in the units of Enright et al., J. Comput. Phys. 183 (2002):
+// [0,100]^2, disk centre (50, 75), radius 15, slot 5 wide reaching from the
+// bottom of the disk up to y = 85 (25 long), rigid rotation about (50, 50) with
+// omega = pi/314: one revolution at T = 628. Same scene as cases/zalesak.
+constexpr double kZR = 15, kZcx = 50, kZcy = 75, kZw = 5, kZtop = 85, kZT = 628;
+
+std::string zalesakScene(int n, Mode m) {
+  // psi = min(cylinder, -box) has the exact zero set and |grad psi| = 1 almost
+  // everywhere, so Fast Marching is off (and not under test here).
+  return "name: zalesak\n" + domain(100, n) +
+         "time: {end: 628, cfl: 0.5}\n"
+         "materials: {disk: {density: 1, viscosity: 0}, air: {density: 1, viscosity: 0}}\n"
+         "fluid: air\n" + effectsFor(m) +
+         "prescribed_flow: {type: rotation, center: [50, 50, 0], omega: [0, 0, 0.010005072145190]}\n"
+         "level_set:\n"
+         "  phase: disk\n"
+         "  fast_marching: false\n"
+         "  shape:\n"
+         "    type: intersection\n"
+         "    of:\n"
+         "      - {type: cylinder, center: [50, 75, 0], radius: 15, axis: z}\n"
+         "      - {type: complement, of: {type: box, lo: [47.5, 50, -100], hi: [52.5, 85, 100]}}\n"
+         "output: {enabled: false}\n";
+}
+
+bool insideZalesak(double x, double y) {
+  const bool inSlot = std::abs(x - kZcx) < 0.5 * kZw && y < kZtop;
+  return !inSlot && std::hypot(x - kZcx, y - kZcy) < kZR;
+}
+
+// Exact perimeter and area: the circle less the arc under the slot's mouth, two
+// walls from the circle up to y = 85, and the slot's top.
+double zalesakPerimeter() {
+  const double a = std::asin(0.5 * kZw / kZR), yb = kZcy - kZR * std::cos(a);
+  return kZR * (2 * M_PI - 2 * a) + 2 * (kZtop - yb) + kZw;
+}
+double zalesakArea() {
+  const double a = std::asin(0.5 * kZw / kZR), yb = kZcy - kZR * std::cos(a);
+  return M_PI * kZR * kZR - kZw * (kZtop - yb) - kZR * kZR * (a - std::sin(a) * std::cos(a));
+}
+
+// ---- Single vortex ---------------------------------------------------------------
+// LeVeque (1996), Rider & Kothe (1998), Enright et al. (2002): a circle of radius
+// 0.15 at (0.5, 0.75) in the unit square, stream function
+// sin^2(pi x) sin^2(pi y) cos(pi t / T) / pi; reversed at T/2, exact again at T.
+constexpr double kVR = 0.15, kVcx = 0.5, kVcy = 0.75;
+
+std::string vortexScene(int n, double T, Mode m) {
+  char tp[160];
+  std::snprintf(tp, sizeof tp, "time: {end: %.17g, cfl: 0.5}\nprescribed_flow: {type: single_vortex, period: %.17g}\n",
+                T, T);
+  return "name: single_vortex\n" + domain(1, n) + tp +
+         "materials: {blob: {density: 1, viscosity: 0}, air: {density: 1, viscosity: 0}}\n"
+         "fluid: air\n" + effectsFor(m) +
+         "level_set: {phase: blob, fast_marching: false,\n"
+         "            shape: {type: cylinder, center: [0.5, 0.75, 0], radius: 0.15, axis: z}}\n"
+         "output: {enabled: false}\n";
+}
+
+// prescribed_flow's single_vortex on the unit square.
+void vortexVelocity(double x, double y, double t, double T, double& u, double& v) {
+  const double f = std::cos(M_PI * t / T), sx = std::sin(M_PI * x), sy = std::sin(M_PI * y);
+  u = -2 * sx * sx * sy * std::cos(M_PI * y) * f;
+  v = 2 * sy * sy * sx * std::cos(M_PI * x) * f;
+}
+
+// A closed polygon (the exact interface as traced markers).
+struct Poly {
+  std::vector<double> x, y;
+  double length() const {
+    double L = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      const size_t j = (i + 1) % x.size();
+      L += std::hypot(x[j] - x[i], y[j] - y[i]);
+    }
+    return L;
+  }
+  // Even-odd rule.
+  bool inside(double px, double py) const {
+    bool in = false;
+    for (size_t i = 0, j = x.size() - 1; i < x.size(); j = i++)
+      if ((y[i] > py) != (y[j] > py) && px < x[j] + (py - y[j]) * (x[i] - x[j]) / (y[i] - y[j])) in = !in;
+    return in;
+  }
+};
+
+// The initial circle as m markers moved by RK4 to time tEnd (steps steps).
+Poly traceCircle(double tEnd, double T, int m, int steps) {
+  Poly p;
+  const double dt = tEnd / steps;
+  for (int q = 0; q < m; ++q) {
+    const double a = 2 * M_PI * q / m;
+    double x = kVcx + kVR * std::cos(a), y = kVcy + kVR * std::sin(a), t = 0;
+    for (int s = 0; s < steps; ++s, t += dt) {
+      double u1, v1, u2, v2, u3, v3, u4, v4;
+      vortexVelocity(x, y, t, T, u1, v1);
+      vortexVelocity(x + 0.5 * dt * u1, y + 0.5 * dt * v1, t + 0.5 * dt, T, u2, v2);
+      vortexVelocity(x + 0.5 * dt * u2, y + 0.5 * dt * v2, t + 0.5 * dt, T, u3, v3);
+      vortexVelocity(x + dt * u3, y + dt * v3, t + dt, T, u4, v4);
+      x += dt / 6 * (u1 + 2 * u2 + 2 * u3 + u4);
+      y += dt / 6 * (v1 + 2 * v2 + 2 * v3 + v4);
+    }
+    p.x.push_back(x);
+    p.y.push_back(y);
+  }
+  return p;
+}
+
+// ---- Running and measuring ---------------------------------------------------------
+
+// Advances to time t with the scene's adaptive dt, landing on t exactly (the
+// choice Simulation::run makes).
+void advanceTo(Simulation& sim, double t) {
+  State& st = sim.state();
+  while (st.t < t * (1 - 1e-12)) {
+    double dt = sim.stableDt().dt;
+    if (st.t + dt * (1 + 1e-9) >= t) dt = t - st.t;
+    sim.advance(dt);
+  }
+}
+
+struct Snapshot {
+  double sharpChange = 0; // sharp area / initial - 1
+  double hChange = 0;     // smoothed H area / initial - 1
+  double sharpArea = 0;   // 2-D area (volume / Lz)
+  double length = 0;      // interface length: diag interface_area / Lz
+  double maxPsi = 0;
+  double shapeError = 0;  // sum |H(exact) - H(psi)| dA / L (a length)
+  double width() const { return length > 0 ? 2 * sharpArea / length : 0; }
+};
+
+Snapshot measure(const Simulation& sim, const std::function<bool(double, double)>& insideExact, double perimeter) {
+  const State& st = sim.state();
+  const Grid& g = st.grid;
+  const double Lz = g.hi[2] - g.lo[2];
+  nlohmann::json j;
+  sim.effect("level_set")->summary(st, j);
+  const auto& ls = j["level_set"];
+  Snapshot s;
+  s.sharpChange = ls["sharp_volume"].get<double>() / ls["sharp_volume_initial"].get<double>() - 1;
+  s.hChange = ls["volume"].get<double>() / ls["volume_initial"].get<double>() - 1;
+  s.sharpArea = ls["sharp_volume"].get<double>() / Lz;
+  s.length = ls["interface_area"].get<double>() / Lz;
+  auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), st.fields.scalar("psi"));
+  const Range3 r = cellRange(g);
+  double err = 0, mx = -1e300;
+  for (int jj = r.b[1]; jj < r.e[1]; ++jj)
+    for (int i = r.b[0]; i < r.e[0]; ++i) {
+      const double x = g.lo[0] + (g.global(0, i) + 0.5) * g.h[0];
+      const double y = g.lo[1] + (g.global(1, jj) + 0.5) * g.h[1];
+      const double He = insideExact(x, y) ? 1.0 : 0.0;
+      for (int k = r.b[2]; k < r.e[2]; ++k) {
+        err += std::abs(He - sharpHeaviside(psi(i, jj, k)));
+        mx = std::max(mx, psi(i, jj, k));
+      }
+    }
+  MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_DOUBLE, MPI_SUM, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &mx, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  s.shapeError = err * g.cellVolume() / (perimeter * Lz);
+  s.maxPsi = mx;
+  return s;
+}
+
+void record(const std::string& key, const Snapshot& s, double h, double seconds) {
+  if (rank0()) {
+    std::printf("%-36s area %+.3e  H-area %+.3e  E %.3e (%.3f h)  length %.4g  width %.3g h  max psi %.3g h",
+                key.c_str(), s.sharpChange, s.hChange, s.shapeError, s.shapeError / h, s.length, s.width() / h,
+                s.maxPsi / h);
+    if (seconds > 0) std::printf("  %.1f s", seconds);
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+  char buf[32];
+  auto prop = [&](const std::string& name, double v) {
+    std::snprintf(buf, sizeof buf, "%.6e", v);
+    ::testing::Test::RecordProperty(key + "." + name, buf);
+  };
+  prop("area_change", s.sharpChange);
+  prop("H_area_change", s.hChange);
+  prop("shape_error_cells", s.shapeError / h);
+  prop("width_cells", s.width() / h);
+  prop("max_psi_cells", s.maxPsi / h);
+}
+
+struct ZalesakResult {
+  Snapshot end;
+  double h = 0;
+};
+
+ZalesakResult runZalesak(int n, Mode m) {
+  const double w0 = MPI_Wtime();
+  Simulation sim(test::scene(zalesakScene(n, m)), MPI_COMM_WORLD, RunOptions{});
+  sim.initialize();
+  advanceTo(sim, kZT);
+  ZalesakResult r;
+  r.h = 100.0 / n;
+  r.end = measure(sim, insideZalesak, zalesakPerimeter());
+  record("zalesak." + std::to_string(n) + "." + modeName(m), r.end, r.h, MPI_Wtime() - w0);
+  return r;
+}
+
+struct VortexResult {
+  Snapshot half, end;
+  double h = 0;
+};
+
+// Runs to T/2 (measured against the traced filament) and, unless halfOnly, on to
+// T (measured against the initial circle).
+VortexResult runVortex(int n, double T, Mode m, const Poly& exactHalf, bool halfOnly = false,
+                       MPI_Comm comm = MPI_COMM_WORLD, bool quiet = false) {
+  const double w0 = MPI_Wtime();
+  Simulation sim(test::scene(vortexScene(n, T, m)), comm, RunOptions{});
+  sim.initialize();
+  VortexResult r;
+  r.h = 1.0 / n;
+  advanceTo(sim, 0.5 * T);
+  r.half = measure(sim, [&](double x, double y) { return exactHalf.inside(x, y); }, exactHalf.length());
+  if (!halfOnly) {
+    advanceTo(sim, T);
+    r.end = measure(sim, [](double x, double y) { return std::hypot(x - kVcx, y - kVcy) < kVR; }, 2 * M_PI * kVR);
+  }
+  if (!quiet) {
+    char key[64];
+    std::snprintf(key, sizeof key, "vortex.T%g.%d.%s", T, n, modeName(m));
+    record(std::string(key) + ".half", r.half, r.h, halfOnly ? MPI_Wtime() - w0 : 0);
+    if (!halfOnly) record(std::string(key) + ".end", r.end, r.h, MPI_Wtime() - w0);
+  }
+  return r;
+}
+
+} // namespace
+
+// The exact geometry behind the shape error: perimeter 143.80, area 582.21 (the
+// 582.2 quoted for this disk). The sharp area of the discrete initial shape at
+// 128^2 is 1.5 % larger: each slot wall lies 0.2 cells inside a cell counted as
+// disk (2 x 0.156 x 25 = 7.8 of the 8.6 area units).
+TEST(Transport, ZalesakGeometry) {
+  EXPECT_NEAR(zalesakPerimeter(), 143.80, 0.01);
+  EXPECT_NEAR(zalesakArea(), 582.21, 0.01);
+  Simulation sim(test::scene(zalesakScene(128, Mode::NoReinit)), MPI_COMM_WORLD, RunOptions{});
+  sim.initialize();
+  const Snapshot s = measure(sim, insideZalesak, zalesakPerimeter());
+  EXPECT_EQ(s.shapeError, 0.0); // psi_exact is the initial shape at the same centres
+  EXPECT_NEAR(s.sharpArea / zalesakArea(), 1.015, 2e-3);
+  EXPECT_NEAR(s.length / zalesakPerimeter(), 1.0, 0.05); // smoothed-delta length; the corners cost a little
+}
+
+// One revolution of the slotted disk at 64^2 and 128^2 cells (h = 1.5625 and
+// 0.78125 in the disk's units; 256^2 with VOIGT_LONG=1), re-initialised every
+// step with the constraint, and without re-initialisation. Not 50^2 / 100^2: on
+// a cell-centred grid of [0,100] those put cell centres exactly on the slot's
+// top (n = 50) or walls (n = 100), where the sharp H is 1/2 and the shape error
+// has a floor of half a cell per wall cell.
+//
+// Measured (Release):            area      H-area    E        E/h
+//   64^2  constrained           +7.66 %   +0.24 %   1.443    0.92
+//   128^2 constrained           -2.79 %   -1.04 %   0.293    0.37
+//   64^2  no reinit             +2.25 %  -10.7 %    1.783    1.14
+//   128^2 no reinit            +16.9 %   +15.9 %    1.129    1.45  (the slot fills in)
+TEST(Transport, ZalesakOneRotation) {
+  std::vector<int> grids = {64, 128};
+  if (longRuns()) grids.push_back(256);
+  std::vector<ZalesakResult> con, none;
+  for (int n : grids) con.push_back(runZalesak(n, Mode::Constrained));
+  for (int n : grids) none.push_back(runZalesak(n, Mode::NoReinit));
+  if (longRuns())
+    for (int n : grids) runZalesak(n, Mode::Unconstrained);
+  // The shape error falls with resolution: 4.9x from 64^2 to 128^2 with reinit
+  // (asserted > 3x), 1.6x without (asserted > 1.2x).
+  EXPECT_GT(con[0].end.shapeError / con[1].end.shapeError, 3.0);
+  EXPECT_GT(none[0].end.shapeError / none[1].end.shapeError, 1.2);
+  // 128^2 with reinit: bounds 1.5x the measured values.
+  EXPECT_LT(std::abs(con[1].end.sharpChange), 1.5 * 0.0279);
+  EXPECT_LT(std::abs(con[1].end.hChange), 1.5 * 0.0104);
+  EXPECT_LT(con[1].end.shapeError, 1.5 * 0.293);
+  // Re-initialisation is what keeps the slot: at 128^2 the error without it is
+  // 3.9x larger (asserted > 2x).
+  EXPECT_GT(none[1].end.shapeError / con[1].end.shapeError, 2.0);
+}
+
+// Single vortex, T = 2, at 32^2, 64^2 and 128^2: the local volume constraint
+// against plain re-initialisation (and, with VOIGT_LONG=1, no re-initialisation,
+// reported only).
+//
+// Measured at t = T (area = sharp area change, E/h):
+//              constrained              unconstrained            no reinit
+//   32^2   +9.2 % (H +15.5 %) 0.56    -7.9 % (H -3.7 %) 0.66    -21.1 % 0.73
+//   64^2   +3.9 % (H  +2.5 %) 0.35    -2.8 % (H -5.1 %) 0.43     +4.6 % 0.81
+//   128^2  -0.34 % (H -0.02 %) 0.15   -2.8 % (H -2.5 %) 0.29     +1.7 % 0.46
+// The constraint only pays off once the stretched circle (T/2 width measured 3.2, 5.3,
+// 9.9 cells) is wider than the smoothing band 2 kappa = 4 cells: at 128^2 it
+// cuts the area change 8x and the H-volume change 100x; at 32^2 and 64^2 it
+// makes the sharp area change larger than without it (a finding, see
+// cases/single_vortex/README.md), and those grids are only bounded here.
+TEST(Transport, SingleVortexVolumeConstraint) {
+  const double T = 2;
+  std::vector<int> grids = {32, 64, 128};
+  const Poly half = traceCircle(0.5 * T, T, 4000, 1000);
+  if (rank0()) std::printf("exact interface at T/2 (T = 2): length %.5f (circle %.5f)\n", half.length(), 2 * M_PI * kVR);
+  std::vector<VortexResult> con, unc;
+  for (int n : grids) {
+    con.push_back(runVortex(n, T, Mode::Constrained, half));
+    unc.push_back(runVortex(n, T, Mode::Unconstrained, half));
+    if (longRuns()) runVortex(n, T, Mode::NoReinit, half); // reported only (README)
+  }
+  const VortexResult &c128 = con[2], &u128 = unc[2];
+  // Resolved (128^2): the constraint cuts the area change 8.3x (asserted > 4x)
+  // and the H-volume change 107x (asserted > 20x).
+  EXPECT_GT(std::abs(u128.end.sharpChange), 4 * std::abs(c128.end.sharpChange));
+  EXPECT_GT(std::abs(u128.end.hChange), 20 * std::abs(c128.end.hChange));
+  EXPECT_LT(std::abs(c128.end.sharpChange), 1.5 * 0.0034);
+  // Under-resolved grids: regression bounds only (1.5x the measured change).
+  EXPECT_LT(std::abs(con[0].end.sharpChange), 1.5 * 0.092);
+  EXPECT_LT(std::abs(con[1].end.sharpChange), 1.5 * 0.039);
+  for (size_t q = 0; q < grids.size(); ++q) {
+    // The constraint never costs shape accuracy: E(constrained) / E(unconstrained)
+    // = 0.85, 0.81, 0.51 at t = T; allowed up to 1.1.
+    EXPECT_LT(con[q].end.shapeError, 1.1 * unc[q].end.shapeError) << grids[q];
+    // Nor does it thicken the T/2 filament here: width ratio 1.03, 0.99, 1.00
+    // (allowed up to 1.1).
+    EXPECT_LT(con[q].half.width(), 1.1 * unc[q].half.width()) << grids[q];
+  }
+  // The error falls with resolution with the constraint: 3.2x and 4.7x per
+  // halving of h (asserted > 2x).
+  EXPECT_GT(con[0].end.shapeError, 2 * con[1].end.shapeError);
+  EXPECT_GT(con[1].end.shapeError, 2 * con[2].end.shapeError);
+}
+
+// Thin filaments: the T = 8 vortex at 64^2, compared at T/2 (maximum stretching)
+// where the spiral's arms are thinner than the smoothing band. The exact area is
+// conserved; re-initialised level sets keep arms about 3 cells wide whatever
+// their true width, so both runs gain area, and the constraint (which holds the
+// H-volume, which for features thinner than 2 kappa depends on |grad psi|) gains
+// more. Measured at T/2:
+//                   area      width   max psi   E/h
+//   constrained    +135 %    3.18 h   2.04 h    0.98
+//   unconstrained  +105 %    2.98 h   1.92 h    0.91
+// The constraint thickens the filament by 7 % in width and 6 % in max psi
+// (allowed: 15 %), and its shape error is 7 % larger (allowed: 20 %). At 128^2
+// (VOIGT_LONG=1): +50 % against +26 % area, width 4.11 h against 3.95 h.
+TEST(Transport, FilamentT8) {
+  const double T = 8;
+  const Poly half = traceCircle(0.5 * T, T, 8000, 2000);
+  if (rank0()) std::printf("exact interface at T/2 (T = 8): length %.5f\n", half.length());
+  const VortexResult c = runVortex(64, T, Mode::Constrained, half, true);
+  const VortexResult u = runVortex(64, T, Mode::Unconstrained, half, true);
+  EXPECT_LT(c.half.width(), 1.15 * u.half.width());
+  EXPECT_LT(c.half.maxPsi, 1.15 * u.half.maxPsi);
+  EXPECT_LT(c.half.shapeError, 1.2 * u.half.shapeError);
+  // Regression bound on the inflation itself (1.25x the measured +135 %).
+  EXPECT_LT(c.half.sharpChange, 1.25 * 1.35);
+}
+
+// The README's T = 8 numbers at 128^2 (VOIGT_LONG=1 only).
+TEST(Transport, SingleVortexT8Long) {
+  if (!longRuns()) GTEST_SKIP() << "set VOIGT_LONG=1";
+  const double T = 8;
+  const Poly half = traceCircle(0.5 * T, T, 40000, 4000);
+  if (rank0()) std::printf("exact interface at T/2 (T = 8): length %.5f\n", half.length());
+  for (Mode m : {Mode::Constrained, Mode::Unconstrained, Mode::NoReinit}) runVortex(128, T, m, half);
+}
+
+// The decomposition does not matter: the constrained vortex at 32^2 on rank 0
+// alone and on all ranks gives the same areas and errors (the local constraint
+// has no global sums; only the diagnostics' summation order differs).
+TEST(Transport, RankIndependent) {
+  const double T = 2;
+  const Poly half = traceCircle(0.5 * T, T, 1000, 500);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm solo;
+  MPI_Comm_split(MPI_COMM_WORLD, rank == 0 ? 0 : MPI_UNDEFINED, 0, &solo);
+  double a[4] = {0, 0, 0, 0};
+  if (rank == 0) {
+    const VortexResult r = runVortex(32, T, Mode::Constrained, half, false, solo, true);
+    a[0] = r.half.sharpArea, a[1] = r.end.sharpArea, a[2] = r.end.shapeError, a[3] = r.end.hChange;
+    MPI_Comm_free(&solo);
+  }
+  MPI_Bcast(a, 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  const VortexResult all = runVortex(32, T, Mode::Constrained, half, false, MPI_COMM_WORLD, true);
+  EXPECT_NEAR(all.half.sharpArea, a[0], 1e-12 * a[0]);
+  EXPECT_NEAR(all.end.sharpArea, a[1], 1e-12 * a[1]);
+  EXPECT_NEAR(all.end.shapeError, a[2], 1e-12 * a[2]);
+  EXPECT_NEAR(all.end.hChange, a[3], 1e-9);
+}
