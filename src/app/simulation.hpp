@@ -2,7 +2,9 @@
 // A simulation: a scene, its grid and effects, the pipeline they fill, and the
 // time loop with output. `voigt run` and `voigt check` are thin shells over it,
 // and so are the verification tests.
+#include <iosfwd>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,15 @@ namespace voigt {
 
 class FieldWriter;
 class ProbeSet;
+class Checkpointer;
+
+// A run stopped because a field went non-finite or dt collapsed; what() names
+// the field, the cell (global i, j, k), the time, and where the last good
+// state was written. `voigt run` exits with kExitBlowUp.
+struct BlowUp : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+constexpr int kExitBlowUp = 3;
 
 struct RunOptions {
   std::string outDir;      // "" = no output at all (tests)
@@ -21,12 +32,31 @@ struct RunOptions {
   long maxSteps = -1;      // overrides scene time.max_steps when >= 0
   double endTime = -1;     // overrides scene time.end when > 0
   bool progress = true;    // progress line on stderr (only if it is a terminal)
+  // Restart from a checkpoint: a checkpoint file, or a directory whose newest
+  // readable checkpoint is used (`voigt run --restart`: the output directory).
+  std::string restart;
+  // SIGINT/SIGTERM: finish the current step, write a checkpoint, stop (voigt run).
+  bool handleSignals = false;
+};
+
+// Scene section `checkpoint` (all optional):
+//   interval: N     write a checkpoint every N steps (0 = never; default 0)
+//   keep: K         keep the newest K checkpoints (default 2)
+//   last_good: b    keep a copy of the previous step's fields in memory so a
+//                   blow-up can write the last good state (default true; it
+//                   doubles the field memory)
+struct CheckpointCfg {
+  long interval = 0;
+  int keep = 2;
+  bool lastGood = true;
 };
 
 struct RunResult {
   long steps = 0;
   double simTime = 0, wallSeconds = 0;
   double cellStepsPerSecond = 0;
+  int signal = 0;            // SIGINT/SIGTERM that stopped the run (0: it ran to the end)
+  std::string checkpoint;    // the last checkpoint written ("" if none)
 };
 
 class Simulation {
@@ -50,12 +80,24 @@ class Simulation {
   }
   const Pipeline& pipeline() const { return pipeline_; }
   nlohmann::json summary(const RunResult& r) const;
+  const CheckpointCfg& checkpointConfig() const { return ck_; }
+  // Everything but the fields that a checkpoint holds (io/checkpoint.hpp).
+  nlohmann::json checkpointMeta() const;
+  // Collective: loads a checkpoint file (fields and meta) into an initialized
+  // simulation and rebuilds the ghost layers as a normal step leaves them.
+  nlohmann::json restore(const std::string& checkpointFile);
 
  private:
   double chooseDt(double tEnd, double tNextOut);
   void output(bool force);
   void checkFinite();
+  std::string fastestNode() const;
   void writeTimeSeries();
+  void writeTimeSeriesRow(std::ostream& os, bool header);
+  void prepareOutputDir();
+  std::string writeCheckpoint(const FieldStore& fields, const nlohmann::json& meta);
+  void snapshot();
+  void writeSummary(const RunResult& r, const std::string& stop);
 
   Scene scene_;
   RunOptions opt_;
@@ -69,6 +111,15 @@ class Simulation {
   double nextOutput_ = 0;
   std::map<std::string, long> dtReasons_;
   std::vector<std::string> tsColumns_; // timeseries.csv columns, fixed by the first row
+  CheckpointCfg ck_;
+  std::unique_ptr<Checkpointer> checkpointer_;
+  FieldStore backup_;          // fields before the current step (ck_.lastGood)
+  nlohmann::json backupMeta_;  // and the rest of that state
+  bool haveBackup_ = false;
+  long lastCheckpointStep_ = -1;
+  long checkpointsWritten_ = 0;
+  double checkpointSeconds_ = 0;
+  long long checkpointBytes_ = 0;
 };
 
 } // namespace voigt

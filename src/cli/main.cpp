@@ -60,6 +60,14 @@ int check(const Scene& scene) {
 int run(const Scene& scene, RunOptions opt) {
   Simulation sim(scene, MPI_COMM_WORLD, opt);
   const RunResult r = sim.run();
+  if (r.signal) {
+    if (rankOf() == 0)
+      std::cerr << "stopped by signal " << r.signal << " at step " << r.steps << ", t = " << r.simTime
+                << (r.checkpoint.empty() ? std::string(" (no checkpoint: no output directory)")
+                                         : "; checkpoint " + r.checkpoint + " (continue with --restart)")
+                << "\n";
+    return 128 + r.signal;
+  }
   if (rankOf() == 0) {
     std::cout << "done: " << r.steps << " steps to t = " << r.simTime << " in " << r.wallSeconds << " s ("
               << r.cellStepsPerSecond << " cell-steps/s)\n";
@@ -88,14 +96,19 @@ int main(int argc, char** argv) {
     std::vector<std::string> sets;
     long steps = -1;
     double endTime = -1;
-    bool overwrite = false;
+    bool overwrite = false, restart = false;
+    std::string restartFrom;
     auto* runCmd = app.add_subcommand("run", "run a scene");
     runCmd->add_option("scene", scenePath, "scene YAML file")->required();
     runCmd->add_option("-o,--output", outDir, "output directory (default output/<scene name>)");
     runCmd->add_option("--set", sets, "override a scene value: a.b.c=value");
     runCmd->add_option("--steps", steps, "stop after N steps");
     runCmd->add_option("--end-time", endTime, "stop at this simulated time");
-    runCmd->add_flag("--overwrite", overwrite, "replace an existing output directory");
+    runCmd->add_flag("--overwrite", overwrite, "replace an existing output directory (of Voigt output only)");
+    runCmd->add_flag("--restart", restart,
+                     "continue from the newest readable checkpoint in the output directory (scene key "
+                     "checkpoint.interval); output is appended there");
+    runCmd->add_option("--restart-from", restartFrom, "continue from this checkpoint file or directory");
     auto* checkCmd = app.add_subcommand("check", "validate a scene and print what a run would do");
     checkCmd->add_option("scene", scenePath, "scene YAML file")->required();
     checkCmd->add_option("--set", sets, "override a scene value: a.b.c=value");
@@ -114,12 +127,17 @@ int main(int argc, char** argv) {
           opt.overwrite = overwrite;
           opt.maxSteps = steps;
           opt.endTime = endTime;
+          opt.restart = !restartFrom.empty() ? restartFrom : restart ? opt.outDir : "";
+          opt.handleSignals = true;
           code = run(scene, opt);
         }
       }
     } catch (const CLI::ParseError& e) {
       code = rankOf() == 0 ? app.exit(e) : 2;
       if (code == 0 && !e.get_exit_code()) code = 0;
+    } catch (const BlowUp& e) {
+      if (rankOf() == 0) std::cerr << "error: " << e.what() << "\n";
+      code = kExitBlowUp;
     } catch (const SceneError& e) {
       if (rankOf() == 0) std::cerr << "error: " << e.what() << "\n";
       code = 2;

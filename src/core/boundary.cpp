@@ -4,8 +4,11 @@ namespace voigt {
 
 namespace {
 // Applies one face's condition to the nodes lying on it.
+// A moving wall is one with a nonzero velocity (amplitude), whatever its value
+// at time t, so that the edge priority does not change as an oscillating wall
+// passes through zero.
 void markFace(const Grid& g, int face, const FaceBc& bc, const IntField& mask, const VecField& val,
-              bool movingOnly, bool stationaryOnly) {
+              bool movingOnly, bool stationaryOnly, double t) {
   const int d = face / 2, side = face % 2;
   if (side == 0 ? !g.atLo(d) : !g.atHi(d)) return;
   int full = 0;
@@ -18,9 +21,10 @@ void markFace(const Grid& g, int face, const FaceBc& bc, const IntField& mask, c
   Range3 r{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};
   r.b[d] = l;
   r.e[d] = l + 1;
-  const double v0 = bc.type == BcType::Slip ? 0 : bc.velocity[0];
-  const double v1 = bc.type == BcType::Slip ? 0 : bc.velocity[1];
-  const double v2 = bc.type == BcType::Slip ? 0 : bc.velocity[2];
+  const Vec3 v = bc.velocityAt(t);
+  const double v0 = bc.type == BcType::Slip ? 0 : v[0];
+  const double v1 = bc.type == BcType::Slip ? 0 : v[1];
+  const double v2 = bc.type == BcType::Slip ? 0 : v[2];
   Kokkos::parallel_for(
       "mark_face", r.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
         mask(i, j, k) |= full;
@@ -29,19 +33,36 @@ void markFace(const Grid& g, int face, const FaceBc& bc, const IntField& mask, c
         if (full & 4) val.c[2](i, j, k) = v2;
       });
 }
-} // namespace
 
-void buildFaceMask(const Grid& g, const Scene& s, const IntField& mask, const VecField& val) {
-  Kokkos::deep_copy(mask, 0);
-  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(val.c[c], 0.0);
+void markFaces(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t) {
   // Order sets priority at edges and corners: slip, then moving walls and
   // inflow, then stationary walls (a lid's corner nodes stay at rest).
   for (int f = 0; f < 6; ++f)
-    if (s.bc[f].type == BcType::Slip) markFace(g, f, s.bc[f], mask, val, false, false);
+    if (s.bc[f].type == BcType::Slip) markFace(g, f, s.bc[f], mask, val, false, false, t);
   for (int f = 0; f < 6; ++f)
-    if (s.bc[f].type != BcType::Slip) markFace(g, f, s.bc[f], mask, val, true, false);
+    if (s.bc[f].type != BcType::Slip) markFace(g, f, s.bc[f], mask, val, true, false, t);
   for (int f = 0; f < 6; ++f)
-    if (s.bc[f].type != BcType::Slip) markFace(g, f, s.bc[f], mask, val, false, true);
+    if (s.bc[f].type != BcType::Slip) markFace(g, f, s.bc[f], mask, val, false, true, t);
+}
+} // namespace
+
+void buildFaceMask(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t) {
+  Kokkos::deep_copy(mask, 0);
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(val.c[c], 0.0);
+  markFaces(g, s, mask, val, t);
+}
+
+bool hasOscillatingWalls(const Scene& s) {
+  for (const FaceBc& f : s.bc)
+    if (f.oscillating) return true;
+  return false;
+}
+
+void refreshWallValues(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t) {
+  if (!hasOscillatingWalls(s)) return;
+  // Marking is idempotent on the mask (bits are OR-ed in), so re-marking every
+  // face in the same order rewrites exactly the values buildFaceMask wrote, at t.
+  markFaces(g, s, mask, val, t);
 }
 
 void addObstacleMask(const Grid& g, const std::vector<Obstacle>& obs, const IntField& mask,

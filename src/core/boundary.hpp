@@ -12,8 +12,14 @@
 
 namespace voigt {
 
-// Face masks from the scene's boundary conditions, over owned and ghost nodes.
-void buildFaceMask(const Grid& g, const Scene& s, const IntField& mask, const VecField& val);
+// Face masks from the scene's boundary conditions, over owned and ghost nodes;
+// wall values at time t (oscillating walls: velocity * sin(omega t + phase)).
+void buildFaceMask(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t = 0);
+bool hasOscillatingWalls(const Scene& s);
+// Rewrites the face values at time t where the scene has oscillating walls (a
+// no-op otherwise). Overwrites obstacle values on wall nodes: re-add obstacles
+// afterwards if any touch the walls.
+void refreshWallValues(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t);
 // Adds the obstacles (all components, their velocity) to the mask.
 void addObstacleMask(const Grid& g, const std::vector<Obstacle>& obs, const IntField& mask,
                      const VecField& val);

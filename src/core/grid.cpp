@@ -32,6 +32,14 @@ void chooseDims(int size, const std::array<int, 3>& cells, int req[3]) {
     }
   }
   if (best < 0) {
+    // MPI_Dims_create aborts the job if the fixed dims do not divide size: refuse instead.
+    long fixed = 1;
+    bool anyFree = false;
+    for (int d = 0; d < 3; ++d) fixed *= req[d] > 0 ? req[d] : 1, anyFree = anyFree || req[d] <= 0;
+    if (size % fixed != 0 || (!anyFree && fixed != size))
+      throw std::runtime_error("grid: the rank grid " + std::to_string(req[0]) + " x " + std::to_string(req[1]) +
+                               " x " + std::to_string(req[2]) + " (0 = free) does not fit " + std::to_string(size) +
+                               " MPI rank(s)");
     MPI_Dims_create(size, 3, req);
     return;
   }
@@ -67,7 +75,7 @@ Grid makeGrid(MPI_Comm world, std::array<int, 3> cells, std::array<double, 3> lo
     g.c0[d] = crd[d] * base + std::min(crd[d], rem);
     g.ln[d] = base + (crd[d] < rem ? 1 : 0);
     g.c1[d] = g.c0[d] + g.ln[d];
-    if (g.ln[d] < g.ng)
+    if (base < g.ng) // the smallest piece: every rank decides alike (no rank left waiting)
       throw std::runtime_error("grid: " + std::to_string(cells[d]) + " cells on axis " +
                                std::to_string(d) + " cannot be split over " + std::to_string(req[d]) +
                                " ranks (each needs at least " + std::to_string(g.ng) + " cells)");

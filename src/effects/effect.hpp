@@ -28,6 +28,14 @@ class Effect {
   virtual void registerTasks(Pipeline&) = 0;
   virtual DtLimit dtLimit(const State&) const { return {}; }
   virtual void summary(const State&, nlohmann::json&) const {}
+  // Checkpoint and restart (io/checkpoint.hpp): state an effect carries from
+  // step to step outside the field store (flags, reference values, counters).
+  virtual void saveState(nlohmann::json&) const {}
+  virtual void loadState(const nlohmann::json&) {}
+  // Called on restart after the fields' owned points are loaded and their
+  // halos exchanged: refill the ghost layers a normal step leaves filled
+  // (boundary reflections), so the continued run is bit-identical.
+  virtual void restored(State&) {}
 };
 
 struct EffectInfo {

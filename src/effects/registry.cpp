@@ -11,6 +11,7 @@ std::unique_ptr<Effect> makeObstacles();
 std::unique_ptr<Effect> makeLevelSet();
 std::unique_ptr<Effect> makeReinit();
 std::unique_ptr<Effect> makePrescribedFlow();
+std::unique_ptr<Effect> makeElasticity();
 
 const std::vector<EffectInfo>& effectRegistry() {
   static const std::vector<EffectInfo> reg = {
@@ -24,6 +25,8 @@ const std::vector<EffectInfo>& effectRegistry() {
        makeReinit},
       {"prescribed_flow", "kinematic velocity field given in closed form (rotation, vortex, ...)",
        "prescribed_flow", makePrescribedFlow},
+      {"elasticity", "hypoelastic solid: Jaumann-rate stress (Eq. 13/16), transported, blended by H(psi) (Eq. 14)",
+       "elasticity", makeElasticity},
   };
   return reg;
 }
@@ -51,9 +54,12 @@ std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene) {
   }
   for (auto& e : out)
     for (auto& need : e->dependsOn())
-      if (std::find(scene.effects.begin(), scene.effects.end(), need) == scene.effects.end())
-        throw SceneError(scene.path + ": key 'effects': effect '" + e->name() + "' needs '" + need +
-                         "' in the effects list");
+      if (std::find(scene.effects.begin(), scene.effects.end(), need) == scene.effects.end()) {
+        const std::string msg = "effect '" + e->name() + "' needs '" + need + "' in the effects list";
+        if (!scene.source) throw SceneError(scene.path + ": key 'effects': " + msg); // a scene built in code
+        const size_t i = std::find(scene.effects.begin(), scene.effects.end(), e->name()) - scene.effects.begin();
+        Section(scene.root, "", scene.source).failItem("effects", i, msg); // FILE:LINE:COL of the entry
+      }
   std::stable_sort(out.begin(), out.end(),
                    [](auto& a, auto& b) { return a->setupOrder() < b->setupOrder(); });
   for (auto& e : out) e->configure(scene);

@@ -50,6 +50,11 @@ class Reinit : public Effect {
       st.counters["reinit_band_cells_total"] += double(s.bandCells);
     });
   }
+  void saveState(nlohmann::json& j) const override { j = {{"calls", calls_}, {"band_total", bandTotal_}}; }
+  void loadState(const nlohmann::json& j) override {
+    calls_ = j.at("calls").get<long long>();
+    bandTotal_ = j.at("band_total").get<double>();
+  }
   void summary(const State& st, nlohmann::json& j) const override {
     const double mean = calls_ ? bandTotal_ / double(calls_) : 0.0;
     j["reinit"] = {{"calls", calls_},

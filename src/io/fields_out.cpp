@@ -1,6 +1,6 @@
 #include "io/fields_out.hpp"
 
-#include <hdf5.h>
+#include "io/h5_util.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -12,32 +12,8 @@
 namespace voigt {
 namespace {
 
-// Owns one hid_t and closes it with the matching H5?close on scope exit.
-class H5Id {
- public:
-  using Closer = herr_t (*)(hid_t);
-  H5Id(hid_t id, Closer close, const char* what, const std::string& path) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error(path + ": HDF5 " + what + " failed");
-  }
-  H5Id(const H5Id&) = delete;
-  H5Id& operator=(const H5Id&) = delete;
-  ~H5Id() { if (id_ >= 0) close_(id_); }
-  operator hid_t() const { return id_; }
-  // Explicit close so a failing final flush (H5Fclose) is reported.
-  void close(const std::string& path) {
-    hid_t id = id_;
-    id_ = -1;
-    if (close_(id) < 0) throw std::runtime_error(path + ": HDF5 close failed");
-  }
-
- private:
-  hid_t id_;
-  Closer close_;
-};
-
-void check(herr_t e, const char* what, const std::string& path) {
-  if (e < 0) throw std::runtime_error(path + ": HDF5 " + what + " failed");
-}
+using H5Id = h5::Id;
+using h5::check;
 
 // Written index range [b, e) per axis in global indices. Node fields always
 // span n+1 nodes: in a periodic axis the rank ending at n also writes node n
@@ -95,65 +71,35 @@ std::string FieldWriter::write(int index, double time, const std::vector<OutFiel
 
   H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", path);
   check(H5Pset_fapl_mpio(fapl, g_.comm, MPI_INFO_NULL), "H5Pset_fapl_mpio", path);
-  H5Id file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "H5Fcreate", path);
-  H5Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate", path);
-  check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio", path);
+  // Free space is checked before the file exists: HDF5 cannot clean up after
+  // a write that fails half-way (h5_util.hpp, requireSpace).
+  double bytes = 0;
+  for (const auto& f : fields)
+    bytes += 8.0 * f.comps.size() * (g_.n[0] + 1) * (g_.n[1] + 1) * (g_.n[2] + 1);
+  h5::requireSpace(g_, dir_, bytes, "cannot write " + path);
+  try {
+    H5Id file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "H5Fcreate", path);
+    H5Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate", path);
+    check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio", path);
 
-  {
-    H5Id sp(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate", path);
-    H5Id at(H5Acreate2(file, "time", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-            "attribute create 'time'", path);
-    check(H5Awrite(at, H5T_NATIVE_DOUBLE, &time), "attribute write 'time'", path);
-  }
-
-  using Packed = Kokkos::View<double****, Kokkos::LayoutRight, MemSpace>;
-  for (const auto& f : fields) {
-    const int nc = int(f.comps.size());
-    int b[3], e[3];
-    writtenRange(g_, f.centring, b, e);
-    const int extra = f.centring == Centring::Node ? 1 : 0;
-    // Dataset and hyperslab in C order (z, y, x[, comp]).
-    hsize_t gdims[4] = {hsize_t(g_.n[2] + extra), hsize_t(g_.n[1] + extra),
-                        hsize_t(g_.n[0] + extra), hsize_t(nc)};
-    hsize_t start[4] = {hsize_t(b[2]), hsize_t(b[1]), hsize_t(b[0]), 0};
-    hsize_t count[4] = {hsize_t(e[2] - b[2]), hsize_t(e[1] - b[1]), hsize_t(e[0] - b[0]), hsize_t(nc)};
-    const int rank = nc == 1 ? 3 : 4;
-    const bool empty = count[0] * count[1] * count[2] == 0;
-
-    // Pack owned points on the execution space, then one copy to the host.
-    Packed buf("io::packed", count[0], count[1], count[2], nc);
-    const int lb[3] = {g_.local(0, b[0]), g_.local(1, b[1]), g_.local(2, b[2])};
-    const int le[3] = {g_.local(0, e[0]), g_.local(1, e[1]), g_.local(2, e[2])};
-    for (int c = 0; c < nc && !empty; ++c) {
-      const Field src = f.comps[c];
-      const int bx = lb[0], by = lb[1], bz = lb[2];
-      Kokkos::parallel_for("io::pack", Policy3({lb[0], lb[1], lb[2]}, {le[0], le[1], le[2]}),
-                           KOKKOS_LAMBDA(int i, int j, int k) {
-                             buf(k - bz, j - by, i - bx, c) = src(i, j, k);
-                           });
+    {
+      H5Id sp(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate", path);
+      H5Id at(H5Acreate2(file, "time", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              "attribute create 'time'", path);
+      check(H5Awrite(at, H5T_NATIVE_DOUBLE, &time), "attribute write 'time'", path);
     }
-    auto host = Kokkos::create_mirror_view(buf);
-    Kokkos::deep_copy(host, buf);
 
-    H5Id fspace(H5Screate_simple(rank, gdims, nullptr), H5Sclose, "H5Screate_simple", path);
-    H5Id dset(H5Dcreate2(file, f.name.c_str(), H5T_IEEE_F64LE, fspace, H5P_DEFAULT, H5P_DEFAULT,
-                         H5P_DEFAULT),
-              H5Dclose, ("dataset create '" + f.name + "'").c_str(), path);
-    hsize_t mdims[4] = {std::max<hsize_t>(count[0], 1), std::max<hsize_t>(count[1], 1),
-                        std::max<hsize_t>(count[2], 1), hsize_t(nc)};
-    H5Id mspace(H5Screate_simple(rank, mdims, nullptr), H5Sclose, "H5Screate_simple", path);
-    if (empty) {
-      // Still take part in the collective write.
-      check(H5Sselect_none(fspace), "H5Sselect_none", path);
-      check(H5Sselect_none(mspace), "H5Sselect_none", path);
-    } else {
-      check(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr),
-            "H5Sselect_hyperslab", path);
+    for (const auto& f : fields) {
+      h5::Box box;
+      writtenRange(g_, f.centring, box.b, box.e);
+      for (int d = 0; d < 3; ++d) box.gn[d] = g_.n[d] + (f.centring == Centring::Node ? 1 : 0);
+      h5::writeBox(file, dxpl, g_, f.name, f.comps, box, path);
     }
-    check(H5Dwrite(dset, H5T_NATIVE_DOUBLE, mspace, fspace, dxpl, host.data()),
-          ("write of '" + f.name + "'").c_str(), path);
+    file.close(path);
+  } catch (const std::exception& e) {
+    const std::string why = h5::diagnoseWrite(dir_);
+    throw std::runtime_error(std::string(e.what()) + (why.empty() ? "" : ": " + why));
   }
-  file.close(path);
 
   Entry en{index, time, base, {}, {}};
   for (const auto& f : fields) {
@@ -166,6 +112,30 @@ std::string FieldWriter::write(int index, double time, const std::vector<OutFiel
   std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.index < b.index; });
   if (g_.rank == 0) writeXdmf();
   return path;
+}
+
+nlohmann::json FieldWriter::entries() const {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : entries_) {
+    nlohmann::json f = nlohmann::json::array();
+    for (size_t i = 0; i < e.fields.size(); ++i)
+      f.push_back({e.fields[i].first, e.fields[i].second == Centring::Node ? "node" : "cell", e.ncomp[i]});
+    out.push_back({{"index", e.index}, {"time", e.time}, {"file", e.file}, {"fields", f}});
+  }
+  return out;
+}
+
+void FieldWriter::restoreEntries(const nlohmann::json& j) {
+  entries_.clear();
+  for (const auto& x : j) {
+    Entry e{x.at("index").get<int>(), x.at("time").get<double>(), x.at("file").get<std::string>(), {}, {}};
+    for (const auto& f : x.at("fields")) {
+      e.fields.emplace_back(f.at(0).get<std::string>(), f.at(1).get<std::string>() == "node" ? Centring::Node
+                                                                                               : Centring::Cell);
+      e.ncomp.push_back(f.at(2).get<int>());
+    }
+    entries_.push_back(std::move(e));
+  }
 }
 
 void FieldWriter::writeXdmf() const {

@@ -4,6 +4,8 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
@@ -24,6 +26,10 @@ class FieldWriter {
   // Ghost layers must be exchanged first (periodic node n is read from them).
   // Returns the .h5 path.
   std::string write(int index, double time, const std::vector<OutField>& fields);
+  // The outputs written so far (the XDMF index), for checkpoints: a restarted
+  // run restores them so fields.xdmf keeps listing the earlier files.
+  nlohmann::json entries() const;
+  void restoreEntries(const nlohmann::json& j);
 
  private:
   struct Entry {

@@ -1,5 +1,7 @@
 #include "io/probes.hpp"
 
+#include <filesystem>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -30,7 +32,7 @@ void put(std::ostream& o, double v) {
 
 } // namespace
 
-ProbeSet::ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string dir)
+ProbeSet::ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string dir, double resumeAt)
     : g_(g), dir_(std::move(dir)) {
   int ok = 1;
   std::string bad;
@@ -93,8 +95,15 @@ ProbeSet::ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string 
 
     if (g.rank == 0 && ok) {
       const std::string path = dir_ + "/probe_" + p.name + ".csv";
-      s.out = std::make_unique<std::ofstream>(path, std::ios::trunc);
+      s.out = std::make_unique<std::ofstream>(path, resumeAt >= 0 ? std::ios::app : std::ios::trunc);
       if (!*s.out) ok = 0, bad = path;
+    }
+    if (resumeAt >= 0) {
+      std::error_code ec;
+      const std::string path = dir_ + "/probe_" + p.name + ".csv";
+      s.headerDone = std::filesystem::exists(path, ec) && std::filesystem::file_size(path, ec) > 0;
+      s.sampled = true;
+      if (p.interval > 0) s.next = (std::floor(resumeAt / p.interval + 1e-9) + 1) * p.interval;
     }
     probes_.push_back(std::move(s));
   }

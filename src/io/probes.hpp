@@ -13,7 +13,9 @@ namespace voigt {
 
 class ProbeSet {
  public:
-  ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string dir);
+  // resumeAt >= 0: a restarted run at that time appends to the existing CSVs
+  // (no new header) and takes the next interval sample after it.
+  ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string dir, double resumeAt = -1);
   // Collective over g.comm. Ghost layers must be exchanged first. Honours each
   // probe's interval (0 = every call); force samples regardless.
   void sample(double t, const std::vector<OutField>& available, bool force = false);

@@ -1,7 +1,9 @@
 #include "scene/load.hpp"
+#include "scene/presets.hpp"
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -32,7 +34,8 @@ std::string join(const C& c) {
 
 const char* const kFaces[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
 const char* const kCoreKeys[] = {"name", "domain", "boundaries", "time", "materials", "fluid", "effects",
-                                 "gravity", "obstacles", "initial", "projection", "advection", "output", "probes"};
+                                 "gravity", "obstacles", "initial", "projection", "advection", "output", "probes",
+                                 "checkpoint"}; // checkpoint: validated by Simulation (app/simulation.cpp)
 
 // Names end up in file names and CSV headers.
 bool isName(const std::string& s) {
@@ -115,6 +118,10 @@ void readDomain(const Section& top, Scene& sc) {
   sc.cells = d.ivec3("cells", sc.cells, 1, 4096);
   sc.ranks = d.ivec3("ranks", sc.ranks, 0, 1 << 20);
   checkOrdered(d, "hi", sc.lo, sc.hi);
+  for (int a = 0; a < 3; ++a) // finite bounds can still overflow: lo = -1e308, hi = 1e308
+    if (!std::isfinite(sc.hi[a] - sc.lo[a]) || !std::isfinite((sc.hi[a] - sc.lo[a]) / sc.cells[a]) ||
+        !((sc.hi[a] - sc.lo[a]) / sc.cells[a] > 0))
+      d.fail("hi", cat("the domain size along ", "xyz"[a], " (hi - lo) must be a finite number with a nonzero cell size"));
   d.finish();
 }
 
@@ -129,6 +136,16 @@ void readFace(const Section& f, FaceBc& bc) {
     f.fail("velocity", "is only allowed on no_slip (moving wall) and inflow faces");
   if (hasP && bc.type != BcType::Outflow) f.fail("pressure", "is only allowed on outflow faces");
   if (!hasV && bc.type == BcType::Inflow) f.fail("velocity", "is required on an inflow face");
+  if (f.has("oscillation")) { // velocity * sin(omega t + phase)
+    if (bc.type != BcType::NoSlip) f.fail("oscillation", "is only allowed on no_slip (moving wall) faces");
+    if (!hasV) f.fail("oscillation", "needs the wall 'velocity' (the amplitude)");
+    Section o = f.section("oscillation");
+    if (!o.has("omega")) o.fail("omega", "is required (angular frequency, rad per unit time)");
+    bc.oscillating = true;
+    bc.omega = o.number("omega", 0, Range::positive());
+    bc.phase = o.number("phase", 0);
+    o.finish();
+  }
   f.finish();
 }
 
@@ -182,6 +199,19 @@ void readMaterials(const Section& top, Scene& sc) {
     Material& mat = sc.materials[name] = Material{name};
     mat.density = s.number("density", mat.density, Range::positive());
     mat.viscosity = s.number("viscosity", mat.viscosity, Range::nonNegative());
+    // Elastic moduli (elasticity effect): shear_modulus, or youngs_modulus + poisson_ratio.
+    const bool hasG = s.has("shear_modulus"), hasE = s.has("youngs_modulus"), hasNu = s.has("poisson_ratio");
+    if (hasG && (hasE || hasNu))
+      s.fail(hasE ? "youngs_modulus" : "poisson_ratio",
+             "give either shear_modulus or youngs_modulus + poisson_ratio, not both");
+    if (hasG) mat.shearModulus = s.requireNumber("shear_modulus", Range::positive());
+    if (hasE != hasNu) s.fail(hasE ? "poisson_ratio" : "youngs_modulus",
+                              "is required with " + std::string(hasE ? "youngs_modulus" : "poisson_ratio"));
+    if (hasE) {
+      const double E = s.requireNumber("youngs_modulus", Range::positive());
+      const double nu = s.requireNumber("poisson_ratio", {-1, 0.5, true, false}); // (-1, 0.5]
+      mat.shearModulus = E / (2 * (1 + nu)); // Eq. (11)-(13): mu_S = E / (2 (1 + nu))
+    }
     s.finish();
   }
   m.finish(); // duplicate names
@@ -313,6 +343,7 @@ Scene build(YAML::Node root, const std::string& display, const std::string& path
   // Check top-level names first: a typo'd section is a better message than "domain is required".
   for (auto* k : kCoreKeys) top.allow(k);
   for (auto& k : opts.extraSections) top.allow(k); // effects validate these themselves
+  sc.presetNotes = applyPreset(root, top, sc.preset); // defaults only: keys in the scene or --set win
   top.finish();
 
   std::string stem = display.substr(display.find_last_of('/') + 1);
@@ -334,7 +365,17 @@ YAML::Node parse(const std::string& text, const std::string& display) {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {
     std::string at = e.mark.is_null() ? "" : cat(":", e.mark.line + 1, ":", e.mark.column + 1);
-    throw SceneError(display + at + ": invalid YAML: " + e.msg);
+    // yaml-cpp reports a tab in the indentation as a structural error: name the cause.
+    std::string hint;
+    if (!e.mark.is_null()) {
+      std::istringstream in(text);
+      std::string line;
+      int i = 0;
+      while (std::getline(in, line) && i < e.mark.line) ++i;
+      if (i == e.mark.line && line.substr(0, line.find_first_not_of(" \t")).find('\t') != std::string::npos)
+        hint = " (line " + std::to_string(e.mark.line + 1) + " is indented with a tab; YAML allows only spaces)";
+    }
+    throw SceneError(display + at + ": invalid YAML: " + e.msg + hint);
   }
 }
 

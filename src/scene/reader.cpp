@@ -131,6 +131,8 @@ double Section::toNumber(const YAML::Node& n, const std::string& kp, Range r) co
   const char* e = s.data() + s.size();
   double v = 0;
   auto res = std::from_chars(b, e, v);
+  if (!s.empty() && res.ec == std::errc::result_out_of_range && res.ptr == e)
+    failAt(markOf(n), kp, "'" + s + "' is out of the range of a double (about 1e-308 to 1e308)");
   if (s.empty() || res.ec != std::errc() || res.ptr != e)
     failAt(markOf(n), kp, "expected a number, got '" + s + "'");
   if (!std::isfinite(v)) failAt(markOf(n), kp, "must be a finite number (got '" + s + "')");
@@ -145,6 +147,8 @@ long Section::toInteger(const YAML::Node& n, const std::string& kp, long lo, lon
   const char* e = s.data() + s.size();
   long v = 0;
   auto res = std::from_chars(b, e, v);
+  if (!s.empty() && res.ec == std::errc::result_out_of_range && res.ptr == e)
+    failAt(markOf(n), kp, "'" + s + "' is too large");
   if (s.empty() || res.ec != std::errc() || res.ptr != e)
     failAt(markOf(n), kp, "expected an integer, got '" + s + "'");
   if (v < lo || v > hi) {

@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
@@ -23,12 +24,23 @@ struct FaceBc {
   BcType type = BcType::NoSlip;
   Vec3 velocity{0, 0, 0}; // wall velocity (no_slip: moving wall) or inflow velocity
   double pressure = 0;    // outflow pressure
+  // no_slip `oscillation: {omega, phase}`: the wall moves as velocity * sin(omega t + phase).
+  bool oscillating = false;
+  double omega = 0, phase = 0;
+  // Wall (or inflow) velocity at time t.
+  Vec3 velocityAt(double t) const {
+    if (!oscillating) return velocity;
+    const double f = std::sin(omega * t + phase);
+    return {velocity[0] * f, velocity[1] * f, velocity[2] * f};
+  }
 };
 
 struct Material {
   std::string name;
   double density = 1;
-  double viscosity = 0;
+  double viscosity = 0;     // fluid viscosity; on an elastic material the Kelvin-Voigt solid viscosity
+  double shearModulus = 0;  // mu_S of Eq. (13); 0 = not elastic. Given directly (shear_modulus) or
+                            // from youngs_modulus E and poisson_ratio nu: mu_S = E / (2 (1 + nu))
 };
 
 struct ProjectionCfg {
@@ -106,6 +118,8 @@ struct Scene {
   std::vector<Probe> probes;
   ProjectionCfg projection;
   AdvectionCfg advection;
+  std::string preset;                    // `preset:` fast | balanced | accurate, or "" (scene/presets.hpp)
+  std::vector<std::string> presetNotes;  // the knobs it set, "time.cfl = 0.5", for `voigt check`
 
   const Material& fluidMaterial() const { return materials.at(fluid); }
   bool periodic(int axis) const { return bc[2 * axis].type == BcType::Periodic; }

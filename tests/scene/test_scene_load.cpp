@@ -124,6 +124,27 @@ TEST(SceneLoad, DefaultsForAMinimalScene) {
   EXPECT_STREQ(toString(BcType::Outflow), "outflow");
 }
 
+// An oscillating wall: velocity * sin(omega t + phase); plain walls stay constant.
+TEST(SceneLoad, OscillatingWall) {
+  Scene s = loadSceneFromString("domain: {cells: [4, 4, 4]}\n"
+                                "boundaries: {y+: {velocity: [2, 0, 0], oscillation: {omega: 3, phase: 0.5}},\n"
+                                "             y-: {velocity: [1, 0, 0]}}\n",
+                                "test.yaml", options());
+  const FaceBc& top = s.bc[3];
+  EXPECT_TRUE(top.oscillating);
+  EXPECT_EQ(top.omega, 3);
+  EXPECT_EQ(top.phase, 0.5);
+  EXPECT_DOUBLE_EQ(top.velocityAt(0.7)[0], 2 * std::sin(3 * 0.7 + 0.5));
+  EXPECT_EQ(top.velocityAt(0.7)[1], 0);
+  EXPECT_FALSE(s.bc[2].oscillating);
+  EXPECT_EQ(s.bc[2].velocityAt(0.7)[0], 1);
+  // --set reaches the new keys through the same checks.
+  Scene o = loadSceneFromString("domain: {cells: [4, 4, 4]}\nboundaries: {y+: {velocity: [2, 0, 0]}}\n", "test.yaml",
+                                options({"boundaries.y+.oscillation.omega=5"}));
+  EXPECT_TRUE(o.bc[3].oscillating);
+  EXPECT_EQ(o.bc[3].omega, 5);
+}
+
 TEST(SceneLoad, OverridesApply) {
   Scene s = loadSceneFromString(kFull, "full.yaml",
                                 options({"time.end=7", "domain.cells=[8, 16, 4]", "obstacles.2.radius=0.2",
@@ -233,6 +254,16 @@ const BadScene kBad[] = {
     {"tolerance_one", "domain: {cells: [4, 4, 4]}\nprojection:\n  tolerance: 1\n", ":3:", "'projection.tolerance'"},
     {"damping_two", "domain: {cells: [4, 4, 4]}\nprojection: {damping: 2}\n", ":2:", "'projection.damping'"},
     {"bad_limiter", "domain: {cells: [4, 4, 4]}\nadvection:\n  limiter: superbee\n", ":3:", "'advection.limiter'"},
+    {"oscillating_slip", "domain: {cells: [4, 4, 4]}\nboundaries:\n  y+: {type: slip, oscillation: {omega: 1}}\n", ":3:",
+     "'boundaries.y+.oscillation'"},
+    {"oscillation_without_velocity", "domain: {cells: [4, 4, 4]}\nboundaries:\n  y+: {oscillation: {omega: 1}}\n", ":3:",
+     "'boundaries.y+.oscillation'"},
+    {"oscillation_without_omega", "domain: {cells: [4, 4, 4]}\nboundaries:\n  y+:\n    velocity: [1, 0, 0]\n"
+                                  "    oscillation: {phase: 1}\n", ":5:", "'boundaries.y+.oscillation.omega'"},
+    {"oscillation_negative_omega", "domain: {cells: [4, 4, 4]}\nboundaries:\n  y+:\n    velocity: [1, 0, 0]\n"
+                                   "    oscillation: {omega: -2}\n", ":5:", "'boundaries.y+.oscillation.omega'"},
+    {"oscillation_unknown_key", "domain: {cells: [4, 4, 4]}\nboundaries:\n  y+:\n    velocity: [1, 0, 0]\n"
+                                "    oscillation: {omega: 2, amplitude: 1}\n", ":5:", "'boundaries.y+.oscillation.amplitude'"},
 };
 
 class BadScenes : public ::testing::TestWithParam<BadScene> {};

@@ -57,6 +57,24 @@ void LevelSet::setup(State& st) {
   st.diag["volume_drift"] = 0;
 }
 
+void LevelSet::saveState(nlohmann::json& j) const {
+  j = {{"volume0", volume0_}, {"volume", volume_}, {"sharp_volume0", sharpVolume0_}, {"sharp_volume", sharpVolume_},
+       {"area", area_}, {"drift_max", driftMax_}, {"fm_initial_cells", fm_.initialCells},
+       {"fm_accepted_cells", fm_.acceptedCells}, {"fm_seconds", fm_.seconds}};
+}
+
+void LevelSet::loadState(const nlohmann::json& j) {
+  volume0_ = j.at("volume0").get<double>();
+  volume_ = j.at("volume").get<double>();
+  sharpVolume0_ = j.at("sharp_volume0").get<double>();
+  sharpVolume_ = j.at("sharp_volume").get<double>();
+  area_ = j.at("area").get<double>();
+  driftMax_ = j.at("drift_max").get<double>();
+  fm_.initialCells = j.value("fm_initial_cells", fm_.initialCells);
+  fm_.acceptedCells = j.value("fm_accepted_cells", fm_.acceptedCells);
+  fm_.seconds = j.value("fm_seconds", fm_.seconds);
+}
+
 void LevelSet::registerTasks(Pipeline& p) {
   p.add(Stage::Properties, name(), "density and viscosity from H(psi), Eq. (2)-(4)", [this](State& st) { blend(st); });
   p.add(Stage::Advection, name(), "psi: SSP-RK2 + MUSCL/KT, Eq. (1)", [this](State& st) { advect(st); });

@@ -22,6 +22,9 @@ class LevelSet : public Effect {
   void setup(State& st) override;
   void registerTasks(Pipeline& p) override;
   void summary(const State& st, nlohmann::json& j) const override;
+  void saveState(nlohmann::json& j) const override;
+  void loadState(const nlohmann::json& j) override;
+  void restored(State& st) override { refreshGhosts(st, st.fields.scalar("psi")); }
 
   // Stages (public so tests can drive them).
   void advect(State& st);

@@ -2,8 +2,11 @@
 //   du/dt = R(u) = -[div(u u) - u div_h u] + (1/rho) div(tau) + f/rho - (1/rho) G p^n
 // integrated with SSP-RK2 (Heun):
 //   u1 = u^n + dt R(u^n);   u* = (u^n + u1 + dt R(u1)) / 2
-// then prescribed components are re-imposed. tau comes from the Stress stage
-// (viscous here; elasticity blends its own in, Eq. 9), f from the Forces stage.
+// then prescribed components are re-imposed (oscillating walls: their values at
+// t^{n+1}). tau comes from the Stress stage (viscous here; elasticity blends its
+// own in, Eq. 9), f from the Forces stage.
+#include <algorithm>
+
 #include "core/boundary.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 
@@ -76,6 +79,15 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   VecField val = st.fields.vector("fix_value");
   const double dt = st.dt;
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(u0.c[c], u.c[c]);
+  // Oscillating walls: prescribed values at t^{n+1}. Heun's stages sit at t^n
+  // and t^{n+1}: u^n already holds the wall value at t^n, and both the stage-1
+  // result u1 (the predictor at t^{n+1}, which stage 2 evaluates) and u* get
+  // the value at t^{n+1}. Obstacles touching a wall keep their own velocity.
+  if (hasOscillatingWalls(*scene_)) {
+    refreshWallValues(g, *scene_, mask, val, st.t + dt);
+    if (std::find(scene_->effects.begin(), scene_->effects.end(), "obstacles") != scene_->effects.end())
+      addObstacleMask(g, scene_->obstacles, mask, val);
+  }
 
   evaluateRhs(st, p, u, rhs);
   Kokkos::parallel_for(

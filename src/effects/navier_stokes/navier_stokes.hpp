@@ -21,6 +21,15 @@ class NavierStokes : public Effect {
   void registerTasks(Pipeline& p) override;
   DtLimit dtLimit(const State& st) const override;
   void summary(const State& st, nlohmann::json& j) const override;
+  void saveState(nlohmann::json& j) const override {
+    j["initial_pressure_done"] = initialPressureDone_;
+    j["pressure_reference"] = pRef_;
+  }
+  void loadState(const nlohmann::json& j) override {
+    initialPressureDone_ = j.value("initial_pressure_done", initialPressureDone_);
+    pRef_ = j.value("pressure_reference", pRef_);
+  }
+  void restored(State& st) override;
 
   // Stages (public so tests can drive them one at a time).
   void momentum(State& st, Pipeline& p);

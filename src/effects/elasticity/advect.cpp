@@ -1,0 +1,90 @@
+// Advection stage of elasticity: the band list, then transport of tau_S with
+// the material (NOTES.md erratum 3: Eq. (12)'s partial derivative becomes a
+// material one in the Eulerian frame). Each component is advected by exactly
+// the level set's scheme (kernels/levelset.hpp addCellAdvection: Kurganov-
+// Tadmor central flux with MUSCL and the scene's limiter, in the form
+// dq/dt = -[div(v q) - q div_h v]), SSP-RK2 with the velocity frozen at u^n:
+//   q1 = q^n + dt R(q^n);  q^{n+1} = (q^n + q1 + dt R(q1)) / 2
+// over the bounding box of the band's cells on this rank. Cells outside the
+// band (psi <= -(kappa + band h)) hold tau_S = 0.
+#include "core/boundary.hpp"
+#include "effects/elasticity/elasticity.hpp"
+#include "kernels/levelset.hpp"
+
+namespace voigt {
+
+void Elasticity::buildLists(State& st) {
+  const Grid& g = st.grid;
+  Field psi = st.fields.scalar("psi");
+  std::swap(owned_, prev_);
+  nPrev_ = nOwned_;
+  nOwned_ = elastic::buildActiveList(g, psi, threshold_, cellRange(g), owned_);
+  // Owned cells and one ghost layer: the stress divergence at the owned nodes
+  // reads the cells around them (navier_stokes fills tau on cellRange(g, 1)).
+  nGrown_ = elastic::buildActiveList(g, psi, threshold_, cellRange(g, 1), grown_);
+}
+
+void Elasticity::advect(State& st) {
+  const Grid& g = st.grid;
+  buildLists(st); // psi is already at t^{n+1} (level_set advects first)
+  const SymTensorField t = solidStressField(st.fields);
+  VecField u = st.fields.vector("velocity");
+  Field psi = st.fields.scalar("psi");
+  VecField on = st.fields.vector("solid_stress_old"), os = st.fields.vector("solid_stress_old_shear");
+  VecField rn = st.fields.vector("solid_stress_rhs"), rs = st.fields.vector("solid_stress_rhs_shear");
+  const Field q0[6] = {on.c[0], on.c[1], on.c[2], os.c[0], os.c[1], os.c[2]};
+  const Field rh[6] = {rn.c[0], rn.c[1], rn.c[2], rs.c[0], rs.c[1], rs.c[2]};
+  const Range3 box = elastic::listBox(g, owned_, nOwned_);
+  const bool any = nOwned_ > 0;
+  const double dt = st.dt;
+  st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
+  for (int stage = 0; stage < 2; ++stage) {
+    refreshStress(st); // collective: every rank, band or not
+    if (!any) continue;
+    for (int c = 0; c < 6; ++c) {
+      Field q = t.c[c], o = q0[c], r = rh[c];
+      if (stage == 0)
+        Kokkos::parallel_for(
+            "elastic_rk2_init", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+              o(i, j, k) = q(i, j, k);
+              r(i, j, k) = 0;
+            });
+      else
+        Kokkos::parallel_for(
+            "elastic_rk2_zero", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) { r(i, j, k) = 0; });
+      addCellAdvection(g, q, u, r, box, limiter_);
+      const double a = stage == 0 ? 1.0 : 0.5;
+      Kokkos::parallel_for(
+          "elastic_rk2", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+            q(i, j, k) = (1 - a) * o(i, j, k) + a * (q(i, j, k) + dt * r(i, j, k));
+          });
+    }
+  }
+  // tau_S = 0 outside the band: in the box, and where the band was last step.
+  const double thr = threshold_;
+  if (any)
+    Kokkos::parallel_for(
+        "elastic_zero_box", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          if (psi(i, j, k) <= thr)
+            for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
+        });
+  if (nPrev_ > 0) {
+    const elastic::Unpack up{g.ext[0], g.ext[1]};
+    const elastic::IntList prev = prev_;
+    Field S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
+    const double floorLog = 2 * std::log10(1e-6 * mu_);
+    Kokkos::parallel_for(
+        "elastic_zero_left", Kokkos::RangePolicy<ExecSpace>(0, nPrev_), KOKKOS_LAMBDA(int p) {
+          int i, j, k;
+          up(prev(p), i, j, k);
+          if (psi(i, j, k) <= thr) {
+            for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
+            S2(i, j, k) = 0;
+            lg(i, j, k) = floorLog;
+          }
+        });
+  }
+  refreshStress(st); // the Stress stage reads one ghost layer
+}
+
+} // namespace voigt

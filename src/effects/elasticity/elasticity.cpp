@@ -1,0 +1,172 @@
+// elasticity: scene section, fields, initial stress, time-step limit, summary.
+// Scene:
+//   materials.<solid>: shear_modulus, or youngs_modulus + poisson_ratio
+//     (mu_S = E / (2 (1 + nu))); `viscosity` on it is the optional Kelvin-Voigt
+//     solid viscosity (NOTES.md erratum 7; default 0), which enters through the
+//     level set's mu blend H mu_solid + (1 - H) mu_L.
+//   elasticity: {initial_stress: {xx, yy, zz, xy, yz, zx} (Pa, where psi > 0),
+//                band: cells beyond H > 0 where the stress kernels run (default 3),
+//                rotation: cayley | explicit (default cayley): how Eq. (16)'s half
+//                  rotations are applied (kernels/elastic.hpp header)}
+#include "effects/elasticity/elasticity.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/boundary.hpp"
+#include "levelset/params.hpp"
+#include "scene/reader.hpp"
+
+namespace voigt {
+
+std::unique_ptr<Effect> makeElasticity() { return std::make_unique<Elasticity>(); }
+
+SymTensorField solidStressField(const FieldStore& f) {
+  VecField n = f.vector("solid_stress"), s = f.vector("solid_stress_shear");
+  SymTensorField t;
+  for (int c = 0; c < 3; ++c) {
+    t.c[c] = n.c[c];
+    t.c[3 + c] = s.c[c];
+  }
+  return t;
+}
+
+void Elasticity::configure(const Scene& s) {
+  scene_ = &s;
+  // level_set (configured first: lower setupOrder) has validated its section.
+  phase_ = s.root["level_set"] && s.root["level_set"]["phase"] ? s.root["level_set"]["phase"].as<std::string>() : "";
+  const Section sec = topSection(s, "elasticity");
+  if (!s.materials.count(phase_)) sec.fail("band", "needs level_set.phase to name the solid material");
+  const Material& m = s.materials.at(phase_);
+  if (!(m.shearModulus > 0)) {
+    const Section mats = topSection(s, "materials");
+    mats.section(phase_).fail("shear_modulus", "is required for the elastic solid '" + phase_ +
+                                                   "' (level_set.phase): give shear_modulus, or "
+                                                   "youngs_modulus and poisson_ratio");
+  }
+  mu_ = m.shearModulus;
+  rho_ = m.density;
+  etaKV_ = m.viscosity;
+  bandCells_ = sec.number("band", 3, Range::nonNegative());
+  rotation_ = sec.choice("rotation", "cayley", {"cayley", "explicit"}) == "explicit" ? elastic::Rotation::Explicit
+                                                                                      : elastic::Rotation::Cayley;
+  const Section is = sec.section("initial_stress");
+  const char* keys[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+  for (int c = 0; c < 6; ++c) tau0_[c] = is.number(keys[c], 0);
+  is.finish();
+  sec.finish();
+  cfl_ = s.time.cfl;
+  const std::string& l = s.advection.limiter;
+  limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
+                                                                                       : Limiter::MinMod;
+}
+
+void Elasticity::declareFields(FieldStore& f) const {
+  const std::string me = name();
+  f.declare("psi", Centring::Cell, 1, me);
+  f.declare("velocity", Centring::Node, 3, me);
+  for (const char* n : {"solid_stress", "solid_stress_shear", "solid_stress_old", "solid_stress_old_shear",
+                        "solid_stress_rhs", "solid_stress_rhs_shear"})
+    f.declare(n, Centring::Cell, 3, me);
+  f.declare("S2", Centring::Cell, 1, me);
+  f.declare("log10_S2", Centring::Cell, 1, me);
+}
+
+void Elasticity::refreshStress(State& st) const {
+  const SymTensorField t = solidStressField(st.fields);
+  st.halo->exchange(std::vector<Field>(t.c, t.c + 6));
+  for (int c = 0; c < 6; ++c) fillCellGhostsEven(st.grid, t.c[c]);
+}
+
+void Elasticity::setup(State& st) {
+  const Grid& g = st.grid;
+  const LevelSetGeometry geo = levelSetGeometry(*scene_);
+  hmin_ = LevelSetGeometry::hMin(g);
+  kappa_ = geo.kappa(g);
+  threshold_ = -(kappa_ + bandCells_ * hmin_);
+  owned_ = elastic::IntList("elastic_owned", size_t(g.cellsOwned()));
+  prev_ = elastic::IntList("elastic_prev", size_t(g.cellsOwned()));
+  grown_ = elastic::IntList("elastic_grown", size_t(cellRange(g, 1).size()));
+  nOwned_ = nPrev_ = nGrown_ = 0;
+
+  // Initial stress where psi > 0 (psi is set up: level_set runs first).
+  const SymTensorField t = solidStressField(st.fields);
+  Field psi = st.fields.scalar("psi");
+  const double a0 = tau0_[0], a1 = tau0_[1], a2 = tau0_[2], a3 = tau0_[3], a4 = tau0_[4], a5 = tau0_[5];
+  Kokkos::parallel_for(
+      "elastic_initial_stress", cellRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        const bool in = psi(i, j, k) > 0;
+        t.c[0](i, j, k) = in ? a0 : 0.0;
+        t.c[1](i, j, k) = in ? a1 : 0.0;
+        t.c[2](i, j, k) = in ? a2 : 0.0;
+        t.c[3](i, j, k) = in ? a3 : 0.0;
+        t.c[4](i, j, k) = in ? a4 : 0.0;
+        t.c[5](i, j, k) = in ? a5 : 0.0;
+      });
+  const double floorLog = std::log10(1e-6 * mu_) * 2; // see diagnose(): log10 of (1e-6 mu_S)^2
+  Kokkos::deep_copy(st.fields.scalar("S2"), 0.0);
+  Kokkos::deep_copy(st.fields.scalar("log10_S2"), floorLog);
+  buildLists(st);
+  refreshStress(st);
+  // Time-series columns are fixed by the first row: declare ours now.
+  diagnose(st);
+  steps_ = 0;
+  cellsTotal_ = 0;
+}
+
+void Elasticity::registerTasks(Pipeline& p) {
+  p.add(Stage::Advection, name(), "tau_S: band list, SSP-RK2 + MUSCL/KT transport (erratum 3)",
+        [this](State& st) { advect(st); });
+  p.add(Stage::Stress, name(), "tau += H(psi) tau_S, Eq. (9)/(14)", [this](State& st) { addStress(st); });
+  p.add(Stage::Corrections, name(), "Jaumann rate, Benson half-step with u^{n+1}, Eq. (13)/(16)",
+        [this](State& st) { update(st); });
+  p.add(Stage::Diagnostics, name(), "S2, elastic energy, stress cells", [this](State& st) { diagnose(st); });
+}
+
+// Explicit elastic stress: shear-wave speed c = sqrt(mu_S / rho_S), dt <= cfl h_min / c (NUMERICS.md).
+DtLimit Elasticity::dtLimit(const State&) const { return {cfl_ * hmin_ / waveSpeed(), "elastic wave"}; }
+
+void Elasticity::saveState(nlohmann::json& j) const {
+  j = {{"steps", steps_}, {"cells_total", cellsTotal_}, {"cells_last", cellsLast_}, {"energy", energy_},
+       {"max_S2", maxS2_}};
+}
+
+void Elasticity::loadState(const nlohmann::json& j) {
+  steps_ = j.at("steps").get<long>();
+  cellsTotal_ = j.at("cells_total").get<double>();
+  cellsLast_ = j.at("cells_last").get<long long>();
+  energy_ = j.at("energy").get<double>();
+  maxS2_ = j.at("max_S2").get<double>();
+}
+
+// The next Advection stage rebuilds the band from psi and zeroes tau_S in the
+// cells of the previous list that left it. That list is not in the checkpoint;
+// the cells holding non-zero stress are exactly those of it that matter (the
+// others hold zeros, and their S2 and log10_S2 hold the reset values), so it is
+// rebuilt from the stress. The grown list is rebuilt from psi before use.
+void Elasticity::restored(State& st) {
+  nOwned_ = elastic::buildNonzeroList(st.grid, solidStressField(st.fields), owned_);
+  nGrown_ = elastic::buildActiveList(st.grid, st.fields.scalar("psi"), threshold_, cellRange(st.grid, 1), grown_);
+  refreshStress(st);
+}
+
+void Elasticity::summary(const State& st, nlohmann::json& j) const {
+  const double mean = steps_ > 0 ? cellsTotal_ / double(steps_) : double(cellsLast_);
+  j["elasticity"] = {{"solid", phase_},
+                     {"shear_modulus", mu_},
+                     {"solid_density", rho_},
+                     {"wave_speed", waveSpeed()},
+                     {"kelvin_voigt_viscosity", etaKV_},
+                     {"band_cells", bandCells_},
+                     {"rotation", rotation_ == elastic::Rotation::Explicit ? "explicit" : "cayley"},
+                     {"steps", steps_},
+                     {"stress_cells_mean", mean},
+                     {"stress_cell_steps", cellsTotal_},
+                     {"band_fraction_mean", mean / double(st.grid.cellsGlobal())},
+                     {"elastic_energy", energy_},
+                     {"max_S2", maxS2_}};
+}
+
+} // namespace voigt

@@ -1,0 +1,86 @@
+#pragma once
+// The elasticity effect: the paper's hypoelastic solid, Eq. (9)-(16), with
+// NOTES.md errata 1-3. The solid is the level set's phase (psi > 0); its
+// deviatoric stress tau_S lives at cell centres (six components) and is
+//   advected with the material, erratum 3 (Advection stage, advect.cpp): the
+//     level set's own scheme, kernels/levelset.hpp addCellAdvection (KT/MUSCL,
+//     scene limiter), SSP-RK2, velocity frozen at u^n;
+//   added to the momentum stress as H(psi) tau_S, Eq. (9)/(14) (Stress stage,
+//     once per Runge-Kutta substage, update.cpp);
+//   updated with the Jaumann rate by Benson's half-step scheme, Eq. (13)/(16)
+//     with errata 1-2 (Corrections stage, after the projection, so with u^{n+1};
+//     kernels/elastic.hpp); scene key `rotation`: each half rotation by the
+//     orthogonal Cayley transform of the half-step spin (default, `cayley`:
+//     keeps |tau| under rotation) or explicitly as erratum 2 prints it
+//     (`explicit`: the amplitude grows by 1 + (w dt)^2 per step).
+// Stress kernels run on a packed list of cells with psi > -(kappa + band h):
+// cells far from any solid cost nothing; tau_S is zero outside the band.
+// One file per stage: elasticity.cpp (scene, fields, set-up, dt, summary),
+// advect.cpp (band list + transport), update.cpp (stress, Jaumann update, diagnostics).
+#include <string>
+
+#include "effects/effect.hpp"
+#include "kernels/advection.hpp"
+#include "kernels/elastic.hpp"
+#include "kernels/stress.hpp"
+
+namespace voigt {
+
+// The solid stress tau_S (xx, yy, zz, xy, yz, zx). Stored as two 3-component
+// cell fields, so that `output.fields` can name them: `solid_stress` holds
+// (xx, yy, zz) and `solid_stress_shear` holds (xy, yz, zx).
+SymTensorField solidStressField(const FieldStore& f);
+
+class Elasticity : public Effect {
+ public:
+  std::string name() const override { return "elasticity"; }
+  std::vector<std::string> dependsOn() const override { return {"level_set"}; }
+  int setupOrder() const override { return 6; } // after level_set (psi exists), before reinit
+  void configure(const Scene& s) override;
+  void declareFields(FieldStore& f) const override;
+  void setup(State& st) override;
+  void registerTasks(Pipeline& p) override;
+  DtLimit dtLimit(const State& st) const override;
+  void summary(const State& st, nlohmann::json& j) const override;
+  // Checkpoint/restart: counters in the JSON; the band list is rebuilt from
+  // the restored stress (restored()), so the continued run is bit-identical.
+  void saveState(nlohmann::json& j) const override;
+  void loadState(const nlohmann::json& j) override;
+  void restored(State& st) override;
+
+  double shearModulus() const { return mu_; }
+  double solidDensity() const { return rho_; }
+  double kelvinVoigtViscosity() const { return etaKV_; }
+  elastic::Rotation rotation() const { return rotation_; }
+  double waveSpeed() const { return std::sqrt(mu_ / rho_); }
+
+  // Stages (public so tests can drive them one at a time).
+  void advect(State& st);     // Advection: band list + transport of tau_S
+  void addStress(State& st);  // Stress: tau += H(psi) tau_S
+  void update(State& st, double spinScale = 0.5); // Corrections: Benson/Jaumann
+  void diagnose(State& st);   // Diagnostics: S2, energy, counts
+  int activeCells() const { return nOwned_; } // this rank's cells in the band
+
+ private:
+  void buildLists(State& st);
+  void refreshStress(State& st) const;
+
+  const Scene* scene_ = nullptr;
+  std::string phase_;
+  double mu_ = 0, rho_ = 1, etaKV_ = 0;
+  elastic::Rotation rotation_ = elastic::Rotation::Cayley;
+  double tau0_[6] = {0, 0, 0, 0, 0, 0};
+  double bandCells_ = 3, kappa_ = 0, threshold_ = 0, cfl_ = 0.5, hmin_ = 1;
+  Limiter limiter_ = Limiter::MinMod;
+
+  elastic::IntList owned_, prev_, grown_;
+  int nOwned_ = 0, nPrev_ = 0, nGrown_ = 0;
+
+  // Diagnostics and counters for summary.json.
+  double energy_ = 0, maxS2_ = 0;
+  long long cellsLast_ = 0;
+  double cellsTotal_ = 0; // sum over steps of global stress cells
+  long steps_ = 0;
+};
+
+} // namespace voigt

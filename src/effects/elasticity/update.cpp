@@ -1,0 +1,94 @@
+// Stress, Corrections and Diagnostics stages of elasticity.
+//   Stress (per Runge-Kutta substage of navier_stokes): tau += H(psi) tau_S,
+//     Eq. (9)/(14). The viscous task ran first and filled tau = mu D with the
+//     level set's blended mu = H mu_solid + (1 - H) mu_L (mu_solid = the
+//     optional Kelvin-Voigt viscosity, 0 by default), so the sum is
+//     tau = H tau_S + (1 - H) mu_L D [+ H eta_KV D]: Eq. (14) and, across the
+//     interface, Eq. (15)'s Kelvin-Voigt blend. tau_S is the same in both
+//     substages (it changes only in Corrections).
+//   Corrections (after the projection, velocity u^{n+1}): Benson's half-step
+//     Jaumann update, Eq. (16) with errata 1-2, half rotations by the scene's
+//     `rotation` (Cayley by default; kernels/elastic.hpp). Momentum
+//     used tau_S^n, the stress update uses u^{n+1}: the velocity/stress pair is
+//     advanced like symplectic Euler, which is neutrally stable for elastic
+//     waves below the elastic-wave dt limit (no amplitude growth or decay from
+//     the time integration itself; test_shear_wave measures it).
+//   Diagnostics: S2 and log10(S2) at the band cells, elastic energy
+//     integral of H tau_S:tau_S / (4 mu_S) dV (= mu_S gamma^2 / 2 for a simple
+//     shear gamma), max |S2| over the solid (psi > 0; the band's fluid side
+//     also carries tau_S, as in the paper, where H ~ 0 makes it harmless) and
+//     the number of cells the kernels touched.
+#include <mpi.h>
+
+#include <cmath>
+
+#include "effects/elasticity/elasticity.hpp"
+#include "effects/navier_stokes/navier_stokes.hpp"
+
+namespace voigt {
+
+void Elasticity::addStress(State& st) {
+  elastic::addSolidStress(st.grid, st.fields.scalar("psi"), kappa_, solidStressField(st.fields),
+                          stressField(st.fields), grown_, nGrown_);
+}
+
+void Elasticity::update(State& st, double spinScale) {
+  VecField u = st.fields.vector("velocity");
+  st.halo->exchange(u); // the corners of the owned cells
+  elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
+                         rotation_);
+}
+
+void Elasticity::diagnose(State& st) {
+  const Grid& g = st.grid;
+  const SymTensorField t = solidStressField(st.fields);
+  Field psi = st.fields.scalar("psi"), S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
+  const elastic::Unpack up{g.ext[0], g.ext[1]};
+  const elastic::IntList cell = owned_;
+  const double kappa = kappa_, dv = g.cellVolume(), inv4mu = 1 / (4 * mu_);
+  // log10 of |S2| floored at (1e-6 mu_S)^2 (a strain of 1e-6), so that
+  // stress-free cells do not swamp a colour map with -infinity. The paper shades
+  // by "the magnitude of the logarithm"; S2 of a deviatoric stress can be negative.
+  const double floorS2 = (1e-6 * mu_) * (1e-6 * mu_);
+  double e = 0, m = 0;
+  Kokkos::parallel_reduce(
+      "elastic_diagnose", Kokkos::RangePolicy<ExecSpace>(0, nOwned_),
+      KOKKOS_LAMBDA(int p, double& sum) {
+        int i, j, k;
+        up(cell(p), i, j, k);
+        const double xx = t.c[0](i, j, k), yy = t.c[1](i, j, k), zz = t.c[2](i, j, k);
+        const double xy = t.c[3](i, j, k), yz = t.c[4](i, j, k), zx = t.c[5](i, j, k);
+        const double s2 = elastic::secondInvariant(xx, yy, zz, xy, yz, zx);
+        S2(i, j, k) = s2;
+        const double a = std::fabs(s2);
+        lg(i, j, k) = std::log10(a > floorS2 ? a : floorS2);
+        const double H = smoothedHeaviside(psi(i, j, k), kappa);
+        sum += H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
+      },
+      e);
+  Kokkos::parallel_reduce(
+      "elastic_max_S2", Kokkos::RangePolicy<ExecSpace>(0, nOwned_),
+      KOKKOS_LAMBDA(int p, double& mx) {
+        int i, j, k;
+        up(cell(p), i, j, k);
+        const double a = psi(i, j, k) > 0 ? std::fabs(S2(i, j, k)) : 0.0; // inside the solid only
+        if (a > mx) mx = a;
+      },
+      Kokkos::Max<double>(m));
+  if (nOwned_ == 0) m = 0; // the Max reducer starts at the lowest double
+  double glob[2];
+  MPI_Allreduce(&e, &glob[0], 1, MPI_DOUBLE, MPI_SUM, g.comm);
+  MPI_Allreduce(&m, &glob[1], 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  long long n = nOwned_, ng = 0;
+  MPI_Allreduce(&n, &ng, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
+  energy_ = glob[0];
+  maxS2_ = glob[1];
+  cellsLast_ = ng;
+  cellsTotal_ += double(ng);
+  ++steps_;
+  st.diag["elastic_energy"] = energy_;
+  st.diag["max_S2"] = maxS2_;
+  st.diag["stress_cells"] = double(ng);
+}
+
+} // namespace voigt

@@ -1,0 +1,538 @@
+// Objectivity of the Jaumann update (Eq. 13/16 with NOTES.md errata 1-3), and
+// the elasticity effect's scene plumbing.
+//
+// A pre-stressed disk (cylinder along z) off the rotation centre is carried by
+// a prescribed rigid rotation (prescribed_flow + level_set + elasticity) through
+// 90, 360 and 720 degrees. In a rigid rotation D = 0 and the stress of a
+// material element must be R tau0 R^T, R the rotation about z by theta =
+// omega t. Measured on the cells at least 4 cells inside the exactly rotated
+// disk, all six components.
+//
+// Transport and rotation separate exactly here: the velocity gradient is the
+// same in every cell (the discrete gradient of a linear field is exact), so the
+// Jaumann map acts identically everywhere, and the transport (linear, and the
+// MinMod limiter is homogeneous: minmod(c a, c b) = c minmod(a, b)) acts the
+// same way on every component. The field therefore stays s(x) M tau0, with
+// s(x) the transported indicator of the initial disk (psi > 0) and M the
+// Benson map; zz is not touched by a rotation about z, so s = zz / zz0. The
+// MUSCL smearing of the stress jump at the interface reaches 4-6 cells in after
+// a turn (s down to ~0.9 at r = R - 4h): it is reported (raw error, s range),
+// and the Jaumann update is judged on tau / s.
+//
+// Both half-step rotations of kernels/elastic.hpp are tested (scene key
+// elasticity.rotation).
+//
+// rotation: explicit (erratum 2 literally). Expected error (derived, not
+// tuned): for a constant spin the Benson half-step multiplies the complex
+// amplitude of the in-plane deviatoric part, (xx - yy)/2 + i xy, by
+// (1 + i omega dt)^2 per step (exact: exp(2 i omega dt)), and (zx, yz) by
+// (1 + i omega dt / 2)^2 (exact: exp(i omega dt)). The phase is right to
+// O((omega dt)^3) per step, the modulus grows by 1 + (omega dt)^2 and
+// 1 + (omega dt)^2 / 4: after N steps the amplitude is too large by
+// prod (1 + (omega dt_n)^2) - 1 ~ theta omega dt, first order in dt. The test
+// (a) replays that discrete map on the host with the simulation's dt sequence
+//     and requires tau / s in the interior to match it to round-off (1e-9: the
+//     field code is exactly the scheme), and
+// (b) requires |tau / s - R tau0 R^T| <= 1.2 x that predicted amplitude error
+//     (20% margin for the phase error and the clipped last step) and reports
+//     the error; halving dt halves it (first order).
+// The paper's W = L - L^T (spin scale 1 instead of 1/2) is replayed with the
+// same map: it turns the stress through 2 theta, and at 90 degrees misses
+// R tau0 R^T by O(|tau0|) (a 180-degree tensor rotation is the identity, so at
+// 360 degrees both agree: the 90-degree case is the sharp one).
+//
+// rotation: cayley (the default). Each half step is tau -> Q tau Q^T with
+// Q = (I - (dt/4) W)^{-1} (I + (dt/4) W). For W the spin of a rotation at rate
+// omega about z, Q is exactly the rotation about z by 2 atan(omega dt / 4)
+// (Cayley transform of the angle omega dt / 2: tan(phi / 2) = omega dt / 4), so
+// after the steps dt_n the discrete map is exactly R(theta_d) tau0 R(theta_d)^T,
+//   theta_d = sum_n 4 atan(omega dt_n / 4)
+//           = theta - sum_n (omega dt_n)^3 / 48 + O(dt^5),
+// with no amplitude error at all. The tensor's in-plane part turns at twice the
+// angle, so |tau / s - R tau0 R^T| = |R(theta_d) tau0 R(theta_d)^T - R tau0 R^T|
+// ~ 2 |theta - theta_d| |tau0| ~ theta (omega dt)^2 / 24 |tau0|: second order.
+// The test requires, at 90, 360 and 720 degrees (cfl 0.5),
+// (a) the Frobenius norm |tau / s| = |tau0| to round-off (1e-9 relative; the
+//     explicit form is 4.7% high after a turn at this dt),
+// (b) tau / s = the host replay of bensonUpdate and = R(theta_d) tau0
+//     R(theta_d)^T, both to 1e-9 (the closed form is derived, not replayed),
+// (c) |tau / s - R tau0 R^T| = |R(theta_d) tau0 R(theta_d)^T - R tau0 R^T| to
+//     1e-9, and the observed order between cfl 0.5 and 0.25 (90 degrees) > 1.8.
+// (the cfl 0.5 run leaves the key out: it is the scene default.)
+// A kernel-level test checks the Cayley map for a spin about a general axis.
+// Measured (64 cells; DISABLED_SweepBothSchemes prints the whole table):
+//   error vs R tau0 R^T     90 deg    360 deg   720 deg
+//   explicit, cfl 0.5       1.24e-2   5.04e-2   1.03e-1   (|tau| +1.2%, +4.7%, +9.7%)
+//   explicit, cfl 0.25      6.16e-3   2.49e-2   5.04e-2   (order 1.01, 1.02, 1.04)
+//   cayley,   cfl 0.5       3.99e-6   1.60e-5   3.19e-5   (|tau| to 9e-14, 3e-13, 7e-13)
+//   cayley,   cfl 0.25      9.98e-7   3.99e-6   7.99e-6   (order 2.00 at each angle)
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "effects/elasticity/elasticity.hpp"
+#include "kernels/elastic.hpp"
+#include "scene/reader.hpp"
+#include "support/flow.hpp"
+
+using namespace voigt;
+
+namespace {
+
+constexpr double kOmega = 2 * M_PI;               // one turn per unit time
+constexpr double kCx = 0.5, kCy = 0.5;            // rotation centre
+constexpr double kDx = 0.5, kDy = 0.7, kR = 0.2;  // disk centre and radius at t = 0
+const double kTau0[6] = {1, -1, 0.3, 0.5, 0.2, -0.1}; // xx yy zz xy yz zx (Pa)
+
+// rotation "" leaves the key out (the scene default).
+std::string rotationScene(int n, double cfl, const std::string& rotation) {
+  const std::string key = rotation.empty() ? "" : "rotation: " + rotation + ",";
+  char buf[2048];
+  std::snprintf(buf, sizeof buf,
+                "name: objectivity\n"
+                "domain: {lo: [0, 0, 0], hi: [1, 1, %.17g], cells: [%d, %d, 2], ranks: [0, 0, 1]}\n"
+                "boundaries: {default: {type: slip}, z-: {type: periodic}, z+: {type: periodic}}\n"
+                "time: {end: 1, cfl: %.17g}\n"
+                "materials: {disk: {density: 1, shear_modulus: 1.0e-3}, air: {density: 1}}\n"
+                "fluid: air\n"
+                "effects: [prescribed_flow, level_set, elasticity]\n"
+                "prescribed_flow: {type: rotation, center: [%g, %g, 0], omega: [0, 0, %.17g]}\n"
+                "level_set: {phase: disk, fast_marching: false,\n"
+                "            shape: {type: cylinder, center: [%g, %g, 0], radius: %g, axis: z}}\n"
+                "elasticity: {%s\n"
+                "             initial_stress: {xx: %g, yy: %g, zz: %g, xy: %g, yz: %g, zx: %g}}\n"
+                "output: {enabled: false}\n",
+                2.0 / n, n, n, cfl, kCx, kCy, kOmega, kDx, kDy, kR, key.c_str(), kTau0[0], kTau0[1], kTau0[2],
+                kTau0[3], kTau0[4], kTau0[5]);
+  return buf;
+}
+
+// R tau R^T for R the rotation about z by theta.
+void rotateZ(const double t[6], double theta, double out[6]) {
+  double T[3][3];
+  elastic::unpackSym(t, T);
+  const double c = std::cos(theta), s = std::sin(theta);
+  const double R[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
+  double M[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      double v = 0;
+      for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q) v += R[a][p] * T[p][q] * R[b][q];
+      M[a][b] = v;
+    }
+  out[0] = M[0][0]; out[1] = M[1][1]; out[2] = M[2][2];
+  out[3] = M[0][1]; out[4] = M[1][2]; out[5] = M[2][0];
+}
+
+// The Benson map replayed for a rigid rotation (L exact, D = 0) over the dt sequence.
+void replay(const std::vector<double>& dts, double spinScale, elastic::Rotation rot, double out[6]) {
+  const double L[3][3] = {{0, -kOmega, 0}, {kOmega, 0, 0}, {0, 0, 0}};
+  for (int c = 0; c < 6; ++c) out[c] = kTau0[c];
+  for (double dt : dts) elastic::bensonUpdate(out, L, 1.0, dt, spinScale, rot);
+}
+
+// The Cayley scheme's exact discrete rotation angle (header): each half step
+// turns by 2 atan(omega dt / 4).
+double cayleyAngle(const std::vector<double>& dts, double omega = kOmega) {
+  double a = 0;
+  for (double dt : dts) a += 4 * std::atan(omega * dt / 4);
+  return a;
+}
+
+// Frobenius norm of a symmetric tensor given by its six components.
+double frob(const double t[6]) {
+  return std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2] + 2 * (t[3] * t[3] + t[4] * t[4] + t[5] * t[5]));
+}
+
+double maxDiff(const double a[6], const double b[6]) {
+  double m = 0;
+  for (int c = 0; c < 6; ++c) m = std::max(m, std::abs(a[c] - b[c]));
+  return m;
+}
+
+// Predicted amplitude error of the scheme (header comment): in-plane deviatoric
+// amplitude times (prod(1 + (w dt)^2) - 1), out-of-plane times (prod(1 + (w dt)^2/4) - 1).
+double predictedError(const std::vector<double>& dts) {
+  double g2 = 1, g1 = 1;
+  for (double dt : dts) {
+    g2 *= 1 + std::pow(kOmega * dt, 2);
+    g1 *= 1 + std::pow(kOmega * dt, 2) / 4;
+  }
+  const double a2 = std::hypot(0.5 * (kTau0[0] - kTau0[1]), kTau0[3]);
+  const double a1 = std::hypot(kTau0[4], kTau0[5]);
+  return a2 * (g2 - 1) + a1 * (g1 - 1);
+}
+
+struct Measured {
+  double errRaw = 0;               // |tau - R tau0 R^T|, transport smearing included
+  double errExact = 0, errReplay = 0; // after dividing by the transported indicator
+  double errClosed = 0;            // vs a closed-form discrete solution (Cayley: R(theta_d))
+  double normDev = 0;              // max | |tau / s|_F / |tau0|_F - 1 |
+  double sMin = 1e300, sMax = -1e300;
+  long long cells = 0;
+};
+
+// Max over interior cells of |tau - expected| (expected uniform), all ranks.
+Measured measure(const Simulation& sim, double theta, const double replayed[6], const double closed[6]) {
+  const State& st = sim.state();
+  const Grid& g = st.grid;
+  const SymTensorField t = solidStressField(st.fields);
+  decltype(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.c[0])) h[6];
+  for (int c = 0; c < 6; ++c) h[c] = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.c[c]);
+  double exact[6];
+  rotateZ(kTau0, theta, exact);
+  // Disk centre rotated about (kCx, kCy).
+  const double cx = kCx + std::cos(theta) * (kDx - kCx) - std::sin(theta) * (kDy - kCy);
+  const double cy = kCy + std::sin(theta) * (kDx - kCx) + std::cos(theta) * (kDy - kCy);
+  const double rIn = kR - 4 * g.h[0];
+  Measured m;
+  const Range3 r = cellRange(g);
+  for (int k = r.b[2]; k < r.e[2]; ++k)
+    for (int j = r.b[1]; j < r.e[1]; ++j)
+      for (int i = r.b[0]; i < r.e[0]; ++i) {
+        const double x = g.lo[0] + (g.global(0, i) + 0.5) * g.h[0];
+        const double y = g.lo[1] + (g.global(1, j) + 0.5) * g.h[1];
+        if (std::hypot(x - cx, y - cy) > rIn) continue;
+        double v[6];
+        for (int c = 0; c < 6; ++c) v[c] = h[c](i, j, k);
+        m.errRaw = std::max(m.errRaw, maxDiff(v, exact));
+        // Normalise by the transported indicator s = zz / zz0 (see the header).
+        const double sc = v[2] / kTau0[2];
+        m.sMin = std::min(m.sMin, sc);
+        m.sMax = std::max(m.sMax, sc);
+        for (int c = 0; c < 6; ++c) v[c] /= sc;
+        m.errExact = std::max(m.errExact, maxDiff(v, exact));
+        m.errReplay = std::max(m.errReplay, maxDiff(v, replayed));
+        m.errClosed = std::max(m.errClosed, maxDiff(v, closed));
+        m.normDev = std::max(m.normDev, std::abs(frob(v) / frob(kTau0) - 1));
+        ++m.cells;
+      }
+  MPI_Allreduce(MPI_IN_PLACE, &m.errRaw, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &m.sMax, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &m.sMin, 1, MPI_DOUBLE, MPI_MIN, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &m.errExact, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &m.errReplay, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &m.errClosed, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &m.normDev, 1, MPI_DOUBLE, MPI_MAX, g.comm);
+  MPI_Allreduce(MPI_IN_PLACE, &m.cells, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
+  return m;
+}
+
+// Advances to time t with the adaptive dt (landing on t), recording the steps.
+void advanceTo(Simulation& sim, double t, std::vector<double>& dts) {
+  State& st = sim.state();
+  while (st.t < t * (1 - 1e-12)) {
+    double dt = sim.stableDt().dt;
+    if (st.t + dt * (1 + 1e-9) >= t) dt = t - st.t;
+    sim.advance(dt);
+    dts.push_back(dt);
+  }
+}
+
+std::string errorOf(const std::string& yaml) {
+  try {
+    Simulation sim(test::scene(yaml), MPI_COMM_WORLD, RunOptions{});
+    sim.initialize();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// rotation: explicit (erratum 2 literally): first order, amplitude grows.
+void rotate(int n, double cfl, const std::string& tag, bool checkPaper, std::vector<double> degrees) {
+  Simulation sim(test::scene(rotationScene(n, cfl, "explicit")), MPI_COMM_WORLD, RunOptions{});
+  sim.initialize();
+  auto* el = dynamic_cast<Elasticity*>(sim.effect("elasticity"));
+  ASSERT_NE(el, nullptr);
+  ASSERT_EQ(el->rotation(), elastic::Rotation::Explicit);
+  std::vector<double> dts;
+  for (double deg : degrees) {
+    const double theta = deg * M_PI / 180;
+    advanceTo(sim, theta / kOmega, dts);
+    double rep[6];
+    replay(dts, 0.5, elastic::Rotation::Explicit, rep);
+    const Measured m = measure(sim, theta, rep, rep);
+    const double pred = predictedError(dts);
+    const std::string key = tag + "_" + std::to_string(int(deg)) + "deg";
+    test::report(key + "_raw_error_vs_exact", m.errRaw);
+    test::report(key + "_indicator_min", m.sMin);
+    test::report(key + "_indicator_max", m.sMax);
+    test::report(key + "_error_vs_exact", m.errExact);
+    test::report(key + "_predicted_scheme_error", pred);
+    test::report(key + "_error_vs_replayed_scheme", m.errReplay);
+    test::report(key + "_norm_relative_deviation", m.normDev);
+    test::report(key + "_steps", double(dts.size()));
+    test::report(key + "_interior_cells", double(m.cells));
+    ASSERT_GT(m.cells, 100);
+    EXPECT_LT(m.errReplay, 1e-9) << "interior cells must follow the Benson map exactly";
+    EXPECT_LT(m.errExact, 1.2 * pred) << "error beyond the half-step scheme's amplitude error";
+    if (checkPaper) {
+      double paper[6], exact[6];
+      replay(dts, 1.0, elastic::Rotation::Explicit, paper);
+      rotateZ(kTau0, theta, exact);
+      const double e = maxDiff(paper, exact);
+      test::report(key + "_paper_W_error_vs_exact", e);
+      if (deg == 90.0) EXPECT_GT(e, 10 * 1.2 * pred) << "the paper's W must fail the same tolerance";
+    }
+  }
+}
+
+// rotation: cayley (default): norm kept to round-off, exact discrete angle,
+// second order. Returns |tau / s - R tau0 R^T| at each angle.
+std::vector<double> rotateCayley(int n, double cfl, const std::string& tag, std::vector<double> degrees,
+                                 bool sceneDefault = false) {
+  std::vector<double> errs;
+  Simulation sim(test::scene(rotationScene(n, cfl, sceneDefault ? "" : "cayley")), MPI_COMM_WORLD, RunOptions{});
+  sim.initialize();
+  auto* el = dynamic_cast<Elasticity*>(sim.effect("elasticity"));
+  EXPECT_NE(el, nullptr);
+  if (!el) return errs;
+  EXPECT_EQ(el->rotation(), elastic::Rotation::Cayley);
+  std::vector<double> dts;
+  for (double deg : degrees) {
+    const double theta = deg * M_PI / 180;
+    advanceTo(sim, theta / kOmega, dts);
+    double rep[6], closed[6], exact[6];
+    replay(dts, 0.5, elastic::Rotation::Cayley, rep);
+    const double thetaD = cayleyAngle(dts);
+    rotateZ(kTau0, thetaD, closed);
+    rotateZ(kTau0, theta, exact);
+    const Measured m = measure(sim, theta, rep, closed);
+    const double pred = maxDiff(closed, exact); // the scheme's exact error (header)
+    double sumCube = 0;
+    for (double dt : dts) sumCube += std::pow(kOmega * dt, 3);
+    const std::string key = tag + "_" + std::to_string(int(deg)) + "deg";
+    test::report(key + "_raw_error_vs_exact", m.errRaw);
+    test::report(key + "_indicator_min", m.sMin);
+    test::report(key + "_indicator_max", m.sMax);
+    test::report(key + "_error_vs_exact", m.errExact);
+    test::report(key + "_predicted_scheme_error", pred);
+    test::report(key + "_discrete_angle_lag_rad", theta - thetaD);
+    test::report(key + "_discrete_angle_lag_leading_term_rad", sumCube / 48);
+    test::report(key + "_error_vs_replayed_scheme", m.errReplay);
+    test::report(key + "_error_vs_closed_form_discrete_rotation", m.errClosed);
+    test::report(key + "_norm_relative_deviation", m.normDev);
+    test::report(key + "_steps", double(dts.size()));
+    test::report(key + "_interior_cells", double(m.cells));
+    EXPECT_GT(m.cells, 100);
+    EXPECT_LT(m.normDev, 1e-9) << "a rigid rotation must keep |tau| (Cayley Q is orthogonal)";
+    EXPECT_LT(m.errReplay, 1e-9) << "interior cells must follow the Cayley-Benson map exactly";
+    EXPECT_LT(m.errClosed, 1e-9) << "the discrete map must be the rotation by theta_d";
+    EXPECT_LT(std::abs(m.errExact - pred), 1e-9) << "error must be the discrete angle lag's, nothing else";
+    EXPECT_NEAR(theta - thetaD, sumCube / 48, 1e-3 * sumCube / 48); // the leading term (O(dt^5) rest)
+    errs.push_back(m.errExact);
+  }
+  return errs;
+}
+
+} // namespace
+
+TEST(Objectivity, RigidRotationOfPrestressedDisk) { rotate(64, 0.5, "n64_cfl0.5", true, {90, 360}); }
+
+// Half the time step: the scheme's amplitude error halves (first order; 90
+// degrees only, to keep the 2-rank run short).
+TEST(Objectivity, RigidRotationHalfStep) { rotate(64, 0.25, "n64_cfl0.25", false, {90}); }
+
+// The default rotation (Cayley): |tau| kept to round-off through two turns, the
+// exact discrete angle, and second order between cfl 0.5 and 0.25 at 90 degrees.
+TEST(Objectivity, CayleyRigidRotationKeepsNormSecondOrder) {
+  const std::vector<double> e1 = rotateCayley(64, 0.5, "cayley_n64_cfl0.5", {90, 360, 720}, true);
+  const std::vector<double> e2 = rotateCayley(64, 0.25, "cayley_n64_cfl0.25", {90});
+  ASSERT_EQ(e1.size(), 3u);
+  ASSERT_EQ(e2.size(), 1u);
+  const double order = std::log2(e1[0] / e2[0]);
+  test::report("cayley_n64_90deg_observed_order_cfl0.5_vs_0.25", order);
+  EXPECT_GT(order, 1.8);
+  EXPECT_LT(order, 2.2);
+}
+
+// The full table (both schemes, cfl 0.5 and 0.25, 90 / 360 / 720 degrees),
+// about a minute on one rank; not in the suite. Run with
+//   test_objectivity --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'
+TEST(Objectivity, DISABLED_SweepBothSchemes) {
+  for (double cfl : {0.5, 0.25}) {
+    const std::string c = cfl == 0.5 ? "cfl0.5" : "cfl0.25";
+    rotate(64, cfl, "sweep_explicit_n64_" + c, false, {90, 360, 720});
+    rotateCayley(64, cfl, "sweep_cayley_n64_" + c, {90, 360, 720});
+  }
+}
+
+// Kernel level: the spin of a rotation, standard vs the paper's W, one turn in
+// many small steps: the standard W gives R tau0 R^T, the paper's gives R(2 theta).
+// (Explicit half steps: predictedError is that map's amplitude error.)
+TEST(Objectivity, PaperSpinTurnsTwiceAsFast) {
+  const int steps = 20000;
+  const double theta = 0.5 * M_PI, dt = theta / kOmega / steps;
+  std::vector<double> dts(steps, dt);
+  double std_[6], paper[6], exact1[6], exact2[6];
+  replay(dts, 0.5, elastic::Rotation::Explicit, std_);
+  replay(dts, 1.0, elastic::Rotation::Explicit, paper);
+  rotateZ(kTau0, theta, exact1);
+  rotateZ(kTau0, 2 * theta, exact2);
+  const double pred = predictedError(dts); // ~ theta omega dt |tau0| ~ 1.2e-4
+  test::report("kernel_standard_W_error_90deg", maxDiff(std_, exact1));
+  test::report("kernel_paper_W_error_vs_2theta", maxDiff(paper, exact2));
+  test::report("kernel_paper_W_error_vs_theta", maxDiff(paper, exact1));
+  EXPECT_LT(maxDiff(std_, exact1), 1.2 * pred);
+  EXPECT_LT(maxDiff(paper, exact2), 4 * 1.2 * pred); // spin twice as large: 4x the amplitude error
+  EXPECT_GT(maxDiff(paper, exact1), 1.0);
+  // The same with Cayley half steps (2000 steps: the O(dt^2) lag is well above
+  // round-off): the paper's W still turns through 2 theta. Both follow the
+  // closed-form discrete angle (header; the paper's spin is 2 omega) to
+  // round-off; vs the exact angle they lag by O(dt^2).
+  const std::vector<double> dts2(2000, theta / kOmega / 2000);
+  double cstd[6], cpaper[6], dstd[6], dpaper[6];
+  replay(dts2, 0.5, elastic::Rotation::Cayley, cstd);
+  replay(dts2, 1.0, elastic::Rotation::Cayley, cpaper);
+  rotateZ(kTau0, cayleyAngle(dts2), dstd);
+  rotateZ(kTau0, cayleyAngle(dts2, 2 * kOmega), dpaper);
+  test::report("kernel_cayley_2000_steps_standard_W_error_90deg", maxDiff(cstd, exact1));
+  test::report("kernel_cayley_2000_steps_standard_W_error_vs_discrete_angle", maxDiff(cstd, dstd));
+  test::report("kernel_cayley_2000_steps_paper_W_error_vs_2theta", maxDiff(cpaper, exact2));
+  test::report("kernel_cayley_2000_steps_paper_W_error_vs_discrete_angle", maxDiff(cpaper, dpaper));
+  test::report("kernel_explicit_2000_steps_predicted_error", predictedError(dts2));
+  EXPECT_LT(maxDiff(cstd, dstd), 1e-11);
+  EXPECT_LT(maxDiff(cpaper, dpaper), 1e-11);
+  EXPECT_LT(maxDiff(cstd, exact1), 1e-3 * predictedError(dts2)); // far below the explicit map's error
+  EXPECT_GT(maxDiff(cpaper, exact1), 1.0);
+}
+
+// Kernel level, Cayley half steps for a spin about a general axis (the field
+// test only turns about z): L with a symmetric part but mu = 0, so the update is
+// two Cayley rotations by the spin w of W = (L - L^T)/2. Q must be orthogonal;
+// after N steps tau = R(n, N 4 atan(|w| dt / 4)) tau0 R^T (Rodrigues, axis
+// n = w / |w|), and |tau|_F = |tau0|_F; the explicit map's norm grows by
+// (1 + (|w| dt)^2)^N on the part that turns at twice the rate.
+TEST(Objectivity, CayleyKernelGeneralAxis) {
+  const double L[3][3] = {{0.3, -1.1, 0.7}, {0.9, -0.2, -0.4}, {-0.5, 1.3, -0.1}};
+  double W[3][3];
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) W[p][q] = 0.5 * (L[p][q] - L[q][p]);
+  const double w[3] = {W[2][1], W[0][2], W[1][0]}; // W v = w x v
+  const double wn = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  const double dt = 0.01;
+  double Q[3][3];
+  elastic::cayleyTransform(W, 0.25 * dt, Q);
+  double orth = 0;
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) {
+      double v = 0;
+      for (int r = 0; r < 3; ++r) v += Q[p][r] * Q[q][r];
+      orth = std::max(orth, std::abs(v - (p == q ? 1.0 : 0.0)));
+    }
+  test::report("kernel_cayley_Q_orthogonality_error", orth);
+  EXPECT_LT(orth, 1e-15);
+  const int steps = 2000;
+  double c[6], e[6];
+  for (int k = 0; k < 6; ++k) c[k] = e[k] = kTau0[k];
+  for (int s = 0; s < steps; ++s) {
+    elastic::bensonUpdate(c, L, 0.0, dt, 0.5, elastic::Rotation::Cayley);
+    elastic::bensonUpdate(e, L, 0.0, dt, 0.5, elastic::Rotation::Explicit);
+  }
+  // Rodrigues rotation by the discrete angle.
+  const double phi = steps * 4 * std::atan(wn * dt / 4);
+  const double n[3] = {w[0] / wn, w[1] / wn, w[2] / wn};
+  const double K[3][3] = {{0, -n[2], n[1]}, {n[2], 0, -n[0]}, {-n[1], n[0], 0}};
+  double R[3][3], T[3][3], M[3][3];
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) {
+      double K2 = 0;
+      for (int r = 0; r < 3; ++r) K2 += K[p][r] * K[r][q];
+      R[p][q] = (p == q ? 1.0 : 0.0) + std::sin(phi) * K[p][q] + (1 - std::cos(phi)) * K2;
+    }
+  elastic::unpackSym(kTau0, T);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      double v = 0;
+      for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q) v += R[a][p] * T[p][q] * R[b][q];
+      M[a][b] = v;
+    }
+  const double closed[6] = {M[0][0], M[1][1], M[2][2], M[0][1], M[1][2], M[2][0]};
+  test::report("kernel_cayley_general_axis_angle_rad", phi);
+  test::report("kernel_cayley_general_axis_error_vs_closed_form", maxDiff(c, closed));
+  test::report("kernel_cayley_general_axis_norm_relative_deviation", frob(c) / frob(kTau0) - 1);
+  test::report("kernel_explicit_general_axis_norm_relative_deviation", frob(e) / frob(kTau0) - 1);
+  EXPECT_LT(maxDiff(c, closed), 1e-11);
+  EXPECT_LT(std::abs(frob(c) / frob(kTau0) - 1), 1e-12);
+  EXPECT_GT(frob(e) / frob(kTau0) - 1, 0.1 * (std::pow(1 + wn * wn * dt * dt / 4, steps) - 1));
+}
+
+TEST(ElasticityScene, NoStressFieldsWithoutElasticity) {
+  auto s = test::scene(
+      "domain: {cells: [8,8,8]}\n"
+      "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\nfluid: air\n"
+      "effects: [navier_stokes, level_set]\n"
+      "level_set: {phase: rubber, shape: {type: sphere, center: [0.5,0.5,0.5], radius: 0.2}}\n"
+      "output: {enabled: false}\n");
+  Simulation sim(s, MPI_COMM_WORLD, RunOptions{});
+  sim.initialize();
+  for (auto& n : sim.state().fields.allocatedNames()) {
+    EXPECT_EQ(n.rfind("solid_stress", 0), std::string::npos) << n;
+    EXPECT_NE(n, "S2");
+    EXPECT_NE(n, "log10_S2");
+  }
+  EXPECT_EQ(sim.effect("elasticity"), nullptr);
+}
+
+TEST(ElasticityScene, ModuliAndErrors) {
+  const std::string base =
+      "domain: {cells: [8,8,8]}\nfluid: air\neffects: [navier_stokes, level_set, elasticity]\n"
+      "level_set: {phase: rubber, shape: {type: sphere, center: [0.5,0.5,0.5], radius: 0.2}}\n"
+      "output: {enabled: false}\n";
+  // E and nu: mu_S = E / (2 (1 + nu)).
+  {
+    Simulation sim(test::scene(base + "materials: {rubber: {density: 100, youngs_modulus: 3000, poisson_ratio: 0.5},"
+                                      " air: {density: 1}}\n"),
+                   MPI_COMM_WORLD, RunOptions{});
+    sim.initialize();
+    auto* e = dynamic_cast<Elasticity*>(sim.effect("elasticity"));
+    ASSERT_NE(e, nullptr);
+    EXPECT_DOUBLE_EQ(e->shearModulus(), 1000.0);
+    EXPECT_DOUBLE_EQ(e->kelvinVoigtViscosity(), 0.0);
+    EXPECT_EQ(e->rotation(), elastic::Rotation::Cayley); // the default
+    nlohmann::json j;
+    e->summary(sim.state(), j);
+    EXPECT_EQ(j["elasticity"]["rotation"], "cayley");
+    const DtLimit l = sim.stableDt();
+    EXPECT_EQ(l.reason, "elastic wave");
+    EXPECT_NEAR(l.dt, 0.5 * (1.0 / 8) / std::sqrt(1000.0 / 100), 1e-15);
+    for (const char* k : {"elastic_energy", "max_S2", "stress_cells"}) EXPECT_TRUE(sim.state().diag.count(k)) << k;
+  }
+  std::string e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000, youngs_modulus: 3000,"
+                                 " poisson_ratio: 0.5}, air: {density: 1}}\n");
+  EXPECT_NE(e.find("youngs_modulus"), std::string::npos) << e;
+  e = errorOf(base + "materials: {rubber: {density: 100, youngs_modulus: 3000}, air: {density: 1}}\n");
+  EXPECT_NE(e.find("poisson_ratio"), std::string::npos) << e;
+  e = errorOf(base + "materials: {rubber: {density: 100}, air: {density: 1}}\n");
+  EXPECT_NE(e.find("shear_modulus"), std::string::npos) << e;
+  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+                     "elasticity: {bnad: 3}\n");
+  EXPECT_NE(e.find("bnad"), std::string::npos) << e;
+  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+                     "elasticity: {initial_stress: {xz: 1}}\n");
+  EXPECT_NE(e.find("xz"), std::string::npos) << e;
+  {
+    Simulation sim(test::scene(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+                                      "elasticity: {rotation: explicit}\n"),
+                   MPI_COMM_WORLD, RunOptions{});
+    sim.initialize();
+    auto* el = dynamic_cast<Elasticity*>(sim.effect("elasticity"));
+    ASSERT_NE(el, nullptr);
+    EXPECT_EQ(el->rotation(), elastic::Rotation::Explicit);
+    nlohmann::json j;
+    el->summary(sim.state(), j);
+    EXPECT_EQ(j["elasticity"]["rotation"], "explicit");
+  }
+  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+                     "elasticity: {rotation: jaumann}\n");
+  EXPECT_NE(e.find("rotation"), std::string::npos) << e;
+  e = errorOf("domain: {cells: [8,8,8]}\neffects: [navier_stokes, elasticity]\noutput: {enabled: false}\n");
+  EXPECT_NE(e.find("level_set"), std::string::npos) << e;
+}

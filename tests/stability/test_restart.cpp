@@ -1,0 +1,322 @@
+// Checkpoint and restart: N steps uninterrupted vs N/2 + restart + N/2 must
+// agree bit for bit on the same rank count and to solver tolerance on another;
+// checkpoint files are complete, pruned and pointed at atomically; blow-ups
+// name field, cell and time and leave the last good state behind.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "io/checkpoint.hpp"
+#include "stability/support.hpp"
+#include "support/flow.hpp"
+
+using namespace voigt;
+using namespace voigt::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<std::string> kTaylorGreen = {"domain.cells=[16,16,4]", "output.interval=0.25", "time.end=10"};
+const std::vector<std::string> kRayleighTaylor = {"domain.cells=[16,64,2]", "output.interval=0.05",
+                                                  "projection.tolerance=1e-10"};
+
+std::vector<std::string> with(std::vector<std::string> s, const std::vector<std::string>& more) {
+  s.insert(s.end(), more.begin(), more.end());
+  return s;
+}
+
+// Runs `n` steps in one go and as n/2 + restart + n/2; expects identical fields.
+void expectBitIdenticalRestart(const std::string& scenePath, const std::vector<std::string>& sets, long n) {
+  TempDir tmp;
+  const long half = n / 2;
+  const Scene s = caseScene(scenePath, with(sets, {"checkpoint.interval=" + std::to_string(half)}));
+  Simulation full(s, MPI_COMM_WORLD, runOpts(tmp.sub("full"), n));
+  full.run();
+  {
+    Simulation first(s, MPI_COMM_WORLD, runOpts(tmp.sub("split"), half));
+    first.run();
+  }
+  Simulation second(s, MPI_COMM_WORLD, runOpts(tmp.sub("split"), n, tmp.sub("split")));
+  second.run();
+  EXPECT_EQ(second.state().step, n);
+  EXPECT_EQ(std::memcmp(&second.state().t, &full.state().t, sizeof(double)), 0)
+      << second.state().t << " vs " << full.state().t;
+  std::string which;
+  EXPECT_EQ(compareFields(full, second, 0, nullptr, &which), 0) << "first differing field: " << which;
+  EXPECT_EQ(full.state().diag, second.state().diag);
+  auto counters = full.state().counters, counters2 = second.state().counters;
+  counters.erase("poisson_seconds"); // wall time
+  counters2.erase("poisson_seconds");
+  EXPECT_EQ(counters, counters2);
+  // The CSV a restarted run continues equals the uninterrupted one.
+  if (worldRank() == 0) {
+    auto read = [](const std::string& p) {
+      std::ifstream in(p);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_EQ(read(tmp.sub("full/timeseries.csv")), read(tmp.sub("split/timeseries.csv")));
+    EXPECT_EQ(read(tmp.sub("full/fields.xdmf")), read(tmp.sub("split/fields.xdmf")));
+    for (auto& p : s.probes) {
+      const std::string f = "/probe_" + p.name + ".csv";
+      EXPECT_FALSE(read(tmp.sub("full") + f).empty()) << f;
+      EXPECT_EQ(read(tmp.sub("full") + f), read(tmp.sub("split") + f)) << f;
+    }
+  }
+}
+
+} // namespace
+
+TEST(Restart, TaylorGreenBitIdentical) { expectBitIdenticalRestart("taylor_green/taylor_green.yaml", kTaylorGreen, 12); }
+
+TEST(Restart, LevelSetBitIdentical) {
+  // navier_stokes + gravity + level_set + reinit: density ratio 3, psi re-initialised every step.
+  expectBitIdenticalRestart("rayleigh_taylor/rayleigh_taylor.yaml", kRayleighTaylor, 8);
+}
+
+TEST(Restart, CylinderBitIdentical) {
+  // Inflow/outflow faces (pressure reference), an obstacle mask, the multigrid-free default solver.
+  expectBitIdenticalRestart("cylinder/cylinder.yaml", {"domain.cells=[64,16,4]", "output.interval=0.5"}, 8);
+}
+
+TEST(Restart, FromFinalCheckpointBitIdentical) {
+  // The first run stops at step 7, between checkpoints (every 5): its final
+  // checkpoint, written before its final forced output, is the restart point.
+  TempDir tmp;
+  const Scene s = caseScene("taylor_green/taylor_green.yaml", with(kTaylorGreen, {"checkpoint.interval=5"}));
+  Simulation full(s, MPI_COMM_WORLD, runOpts(tmp.sub("full"), 12));
+  full.run();
+  {
+    Simulation first(s, MPI_COMM_WORLD, runOpts(tmp.sub("split"), 7));
+    EXPECT_EQ(first.run().checkpoint, tmp.sub("split/checkpoint_000000007.h5"));
+  }
+  Simulation second(s, MPI_COMM_WORLD, runOpts(tmp.sub("split"), 12, tmp.sub("split")));
+  second.run();
+  EXPECT_EQ(compareFields(full, second, 0), 0);
+  if (worldRank() == 0) {
+    auto read = [](const std::string& p) {
+      std::ifstream in(p);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    for (const char* f : {"/timeseries.csv", "/fields.xdmf", "/probe_quarter.csv"})
+      EXPECT_EQ(read(tmp.sub("full") + f), read(tmp.sub("split") + f)) << f;
+  }
+}
+
+TEST(Restart, PrescribedFlowBitIdentical) {
+  expectBitIdenticalRestart("zalesak/zalesak.yaml", {"domain.cells=[48,48,2]", "reinit.interval=3"}, 12);
+}
+
+TEST(Restart, CheckpointFilesAtomicAndPruned) {
+  TempDir tmp;
+  const Scene s = caseScene("taylor_green/taylor_green.yaml",
+                            with(kTaylorGreen, {"checkpoint.interval=3", "checkpoint.keep=2"}));
+  Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 10));
+  const RunResult r = sim.run();
+  // Every 3 steps (3, 6, 9) and at the end (10); the newest two are kept.
+  if (worldRank() == 0) {
+    std::vector<std::string> names;
+    for (auto& e : fs::directory_iterator(tmp.sub("out")))
+      if (e.path().filename().string().rfind("checkpoint", 0) == 0) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"checkpoint_000000009.h5", "checkpoint_000000010.h5"}));
+    std::ifstream l(tmp.sub("out/latest"));
+    std::string latest;
+    l >> latest;
+    EXPECT_EQ(latest, "checkpoint_000000010.h5");
+  }
+  EXPECT_EQ(r.checkpoint, tmp.sub("out/checkpoint_000000010.h5"));
+  // Every allocated field is in it (generically: the file lists them), and it loads.
+  const std::string file = findCheckpoint(MPI_COMM_WORLD, tmp.sub("out"));
+  EXPECT_EQ(file, r.checkpoint);
+  Simulation fresh(s, MPI_COMM_WORLD, RunOptions{});
+  const nlohmann::json meta = fresh.restore(file);
+  std::vector<std::string> inFile;
+  for (auto& [k, v] : meta.at("fields").items()) inFile.push_back(k);
+  auto names = fresh.state().fields.allocatedNames();
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(inFile, names);
+  EXPECT_EQ(fresh.state().step, 10);
+  EXPECT_EQ(compareFields(sim, fresh, 0), 0);
+  EXPECT_TRUE(meta.at("effects").contains("navier_stokes"));
+  EXPECT_EQ(meta.at("effects").at("navier_stokes").at("initial_pressure_done"), true);
+}
+
+TEST(Restart, OtherRankCount) {
+  if (worldSize() != 2) GTEST_SKIP() << "needs 2 ranks (runs as stability.restart.mpi2)";
+  const long n = 12, half = 6;
+  const Scene s = caseScene("taylor_green/taylor_green.yaml",
+                            with(kTaylorGreen, {"checkpoint.interval=" + std::to_string(half)}));
+  TempDir tmp;
+  // 1 rank writes, 2 ranks continue.
+  if (worldRank() == 0) {
+    Simulation one(s, MPI_COMM_SELF, runOpts(tmp.sub("one"), half));
+    one.run();
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  Simulation two(s, MPI_COMM_WORLD, runOpts(tmp.sub("one"), n, tmp.sub("one")));
+  two.run();
+  Simulation ref(s, MPI_COMM_WORLD, runOpts(tmp.sub("ref2"), n));
+  ref.run();
+  double worst = 0;
+  std::string bad;
+  EXPECT_EQ(compareFields(ref, two, 1e-8, &worst, &bad), 0) << "worst relative difference " << worst << " in " << bad;
+  report("restart_1_to_2_ranks_max_rel_diff", worst);
+  EXPECT_EQ(two.state().step, n);
+  EXPECT_NEAR(two.state().t, ref.state().t, 1e-12);
+
+  // 2 ranks write, 1 rank continues.
+  Simulation w2(s, MPI_COMM_WORLD, runOpts(tmp.sub("two"), half));
+  w2.run();
+  if (worldRank() == 0) {
+    Simulation c1(s, MPI_COMM_SELF, runOpts(tmp.sub("two"), n, tmp.sub("two")));
+    c1.run();
+    Simulation r1(s, MPI_COMM_SELF, runOpts(tmp.sub("ref1"), n));
+    r1.run();
+    double w = 0;
+    std::string bad1;
+    EXPECT_EQ(compareFields(r1, c1, 1e-8, &w, &bad1), 0) << "worst relative difference " << w << " in " << bad1;
+    report("restart_2_to_1_ranks_max_rel_diff", w);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+}
+
+TEST(Restart, LevelSetOtherRankCount) {
+  if (worldSize() != 2) GTEST_SKIP() << "needs 2 ranks (runs as stability.restart.mpi2)";
+  const long n = 8, half = 4;
+  const Scene s = caseScene("rayleigh_taylor/rayleigh_taylor.yaml",
+                            with(kRayleighTaylor, {"checkpoint.interval=" + std::to_string(half)}));
+  TempDir tmp;
+  if (worldRank() == 0) {
+    Simulation one(s, MPI_COMM_SELF, runOpts(tmp.sub("one"), half));
+    one.run();
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  Simulation two(s, MPI_COMM_WORLD, runOpts(tmp.sub("one"), n, tmp.sub("one")));
+  two.run();
+  Simulation ref(s, MPI_COMM_WORLD, runOpts(tmp.sub("ref2"), n));
+  ref.run();
+  double worst = 0;
+  std::string bad;
+  EXPECT_EQ(compareFields(ref, two, 1e-8, &worst, &bad), 0) << "worst relative difference " << worst << " in " << bad;
+  report("level_set_restart_1_to_2_ranks_max_rel_diff", worst);
+  EXPECT_NEAR(two.state().diag.at("volume_drift"), ref.state().diag.at("volume_drift"), 1e-12);
+}
+
+TEST(Restart, RefusesAnotherGrid) {
+  TempDir tmp;
+  const Scene s = caseScene("taylor_green/taylor_green.yaml", with(kTaylorGreen, {"checkpoint.interval=2"}));
+  Simulation a(s, MPI_COMM_WORLD, runOpts(tmp.sub("a"), 2));
+  a.run();
+  const Scene other = caseScene("taylor_green/taylor_green.yaml", {"domain.cells=[8,16,4]"});
+  Simulation b(other, MPI_COMM_WORLD, runOpts(tmp.sub("b"), 4, tmp.sub("a")));
+  try {
+    b.run();
+    ADD_FAILURE() << "restart on another grid was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("checkpoint grid is 16 x 16 x 4 cells, the scene's is 8 x 16 x 4"),
+              std::string::npos)
+        << e.what();
+  }
+  // No checkpoint at all: a clear error, not a crash.
+  Simulation c(s, MPI_COMM_WORLD, runOpts(tmp.sub("c"), 4, tmp.sub("nothing_here")));
+  try {
+    c.run();
+    ADD_FAILURE() << "restart without a checkpoint was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("restart: no checkpoint at"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Restart, CheckpointSectionValidated) {
+  try {
+    const Scene s = caseScene("taylor_green/taylor_green.yaml", {"checkpoint.intervall=3"});
+    Simulation sim(s, MPI_COMM_WORLD);
+    ADD_FAILURE() << "unknown key accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("checkpoint.intervall"), std::string::npos) << e.what();
+  }
+  try {
+    const Scene s = caseScene("taylor_green/taylor_green.yaml", {"checkpoint.keep=0"});
+    Simulation sim(s, MPI_COMM_WORLD);
+    ADD_FAILURE() << "keep = 0 accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("checkpoint.keep"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
+  TempDir tmp;
+  // A fixed dt 100 times the stable one: the velocity overflows within a few steps.
+  const Scene s = caseScene("taylor_green/taylor_green.yaml",
+                            {"domain.cells=[16,16,4]", "time.dt=5", "time.end=1e6", "output.enabled=false",
+                             "projection.max_iterations=50"});
+  Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 500));
+  std::string msg;
+  try {
+    sim.run();
+  } catch (const BlowUp& e) {
+    msg = e.what();
+  }
+  ASSERT_FALSE(msg.empty()) << "no blow-up detected";
+  const long badStep = sim.state().step;
+  EXPECT_NE(msg.find("field 'velocity' component x = "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("at node ("), std::string::npos) << msg;
+  EXPECT_NE(msg.find("after step " + std::to_string(badStep) + ", t = "), std::string::npos) << msg;
+  char last[64];
+  std::snprintf(last, sizeof last, "checkpoint_%09ld.h5", badStep - 1);
+  EXPECT_NE(msg.find(std::string("last good state (step ") + std::to_string(badStep - 1) + ") written to " +
+                     tmp.sub("out/") + last),
+            std::string::npos)
+      << msg;
+  // The last good state loads and is finite everywhere; one step from it blows up again.
+  Simulation good(s, MPI_COMM_WORLD, RunOptions{});
+  good.restore(tmp.sub(std::string("out/") + last));
+  EXPECT_EQ(good.state().step, badStep - 1);
+  for (auto& n : good.state().fields.allocatedNames()) {
+    if (good.state().fields.decls().at(n).isInt) continue;
+    const auto& d = good.state().fields.decls().at(n);
+    const Range3 r = d.centring == Centring::Cell ? cellRange(good.state().grid) : nodeRange(good.state().grid);
+    std::vector<Field> comps;
+    if (d.components == 1) comps.push_back(good.state().fields.scalar(n));
+    else for (int c = 0; c < 3; ++c) comps.push_back(good.state().fields.vector(n).c[c]);
+    for (auto& f : comps) {
+      auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f);
+      int nonFinite = 0;
+      for (int k = r.b[2]; k < r.e[2]; ++k)
+        for (int j = r.b[1]; j < r.e[1]; ++j)
+          for (int i = r.b[0]; i < r.e[0]; ++i) nonFinite += !std::isfinite(h(i, j, k));
+      EXPECT_EQ(nonFinite, 0) << n;
+    }
+  }
+  EXPECT_THROW(good.advance(good.state().dt), BlowUp);
+  if (worldRank() == 0) {
+    std::ifstream in(tmp.sub("out/summary.json"));
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j.at("stopped").get<std::string>(), msg);
+  }
+}
+
+TEST(BlowUp, CollapsingTimeStep) {
+  TempDir tmp;
+  // The stable dt is about 0.1; min_dt 0.2 declares that a collapse.
+  const Scene s = caseScene("taylor_green/taylor_green.yaml", with(kTaylorGreen, {"time.min_dt=0.2"}));
+  Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 10));
+  Simulation probe(s, MPI_COMM_WORLD);
+  probe.initialize();
+  const DtLimit lim = probe.stableDt();
+  ASSERT_LT(lim.dt, 0.2);
+  try {
+    sim.run();
+    ADD_FAILURE() << "collapsed dt accepted";
+  } catch (const BlowUp& e) {
+    const std::string msg = e.what();
+    std::ostringstream dt;
+    dt << "time step collapsed to " << lim.dt << " (time.min_dt = 0.2)";
+    EXPECT_NE(msg.find(dt.str()), std::string::npos) << msg;
+    EXPECT_NE(msg.find("limited by " + lim.reason), std::string::npos) << msg;
+    EXPECT_NE(msg.find("at step 0, t = 0"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("fastest flow: field 'velocity' at node ("), std::string::npos) << msg;
+    EXPECT_NE(msg.find("checkpoint_000000000.h5"), std::string::npos) << msg;
+  }
+  EXPECT_EQ(findCheckpoint(MPI_COMM_WORLD, tmp.sub("out")), tmp.sub("out/checkpoint_000000000.h5"));
+}
