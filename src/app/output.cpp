@@ -1,0 +1,114 @@
+// Simulation: field output, probes and the time-series CSV.
+#include "app/simulation.hpp"
+
+#include <unistd.h>
+
+#include <climits>
+#include <csignal>
+#include <cmath>
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "core/index_space.hpp"
+#include "io/checkpoint.hpp"
+#include "io/fields_out.hpp"
+#include "io/probes.hpp"
+#include "kernels/reductions.hpp"
+#include "scene/reader.hpp"
+
+namespace voigt {
+
+namespace fs = std::filesystem;
+
+namespace {
+// Output fields by name; "pressure" is shifted by the outflow reference.
+std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& names) {
+  std::vector<OutField> out;
+  for (auto& n : names) {
+    if (!st.fields.allocated(n))
+      throw SceneError(st.scene->path + ": key 'output.fields': field '" + n +
+                       "' is not produced by this scene's effects");
+    const auto& d = st.fields.decls().at(n);
+    OutField f{n, d.centring, {}};
+    if (d.components == 3) {
+      VecField v = st.fields.vector(n);
+      st.halo->exchange(v);
+      f.comps = {v.c[0], v.c[1], v.c[2]};
+    } else {
+      Field s = st.fields.scalar(n);
+      if (n == "pressure") {
+        const double ref = st.diag.count("pressure_reference") ? st.diag.at("pressure_reference") : 0.0;
+        Field c("pressure_out", s.extent(0), s.extent(1), s.extent(2));
+        Kokkos::parallel_for(
+            "pressure_out", Policy3({0, 0, 0}, {(int)s.extent(0), (int)s.extent(1), (int)s.extent(2)}),
+            KOKKOS_LAMBDA(int i, int j, int k) { c(i, j, k) = s(i, j, k) + ref; });
+        s = c;
+      }
+      st.halo->exchange(s);
+      f.comps = {s};
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+} // namespace
+
+void Simulation::output(bool force) {
+  if (opt_.outDir.empty()) return;
+  if (probes_ && !scene_.probes.empty() && (force || probes_->due(st_.t))) {
+    std::vector<std::string> names;
+    for (auto& p : scene_.probes)
+      for (auto& f : p.fields)
+        if (std::find(names.begin(), names.end(), f) == names.end()) names.push_back(f);
+    probes_->sample(st_.t, gatherFields(st_, names), force);
+  }
+  const bool due = force || (scene_.output.interval > 0 && st_.t >= nextOutput_ - 1e-12 * scene_.time.endTime);
+  if (!due || !scene_.output.enabled) return;
+  writer_->write(outputIndex_++, st_.t, gatherFields(st_, scene_.output.fields));
+  if (scene_.output.interval > 0)
+    while (nextOutput_ <= st_.t + 1e-12 * scene_.time.endTime) nextOutput_ += scene_.output.interval;
+}
+
+void Simulation::writeTimeSeries() {
+  if (opt_.outDir.empty()) return;
+  // Rank 0 writes; every rank learns whether that worked (a full disk stops all).
+  int ok = 1;
+  std::string err;
+  if (st_.grid.rank == 0) {
+    const std::string path = opt_.outDir + "/timeseries.csv";
+    errno = 0;
+    std::error_code ec;
+    const bool fresh = !fs::exists(path, ec) || fs::file_size(path, ec) == 0; // new, or a restart elsewhere
+    std::ofstream os(path, std::ios::app);
+    writeTimeSeriesRow(os, fresh);
+    os.flush();
+    if (!os) ok = 0, err = path + ": write failed: " + std::strerror(errno ? errno : EIO);
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, st_.grid.comm);
+  if (!ok) throw std::runtime_error(st_.grid.rank == 0 ? err : "timeseries.csv write failed (see rank 0)");
+}
+
+void Simulation::writeTimeSeriesRow(std::ostream& os, bool header) {
+  // Columns are fixed by the first row; a diagnostic that appears later (an
+  // effect running every N steps) is left empty until it exists, and one
+  // that was not there at the first row is not written, so rows stay aligned.
+  if (tsColumns_.empty())
+    for (auto& [k, v] : st_.diag) tsColumns_.push_back(k);
+  if (header) {
+    os << "step,t,dt,dt_reason";
+    for (auto& k : tsColumns_) os << "," << k;
+    os << "\n";
+  }
+  os << st_.step << "," << st_.t << "," << st_.dt << "," << st_.dtReason;
+  for (auto& k : tsColumns_) {
+    os << ",";
+    auto it = st_.diag.find(k);
+    if (it != st_.diag.end()) os << it->second;
+  }
+  os << "\n";
+}
+
+} // namespace voigt

@@ -1,0 +1,156 @@
+// Simulation::run: the time loop with output, checkpoints, signals and the
+// blow-up stop (last good state, non-zero exit).
+#include "app/simulation.hpp"
+
+#include <unistd.h>
+
+#include <climits>
+#include <csignal>
+#include <cmath>
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "core/index_space.hpp"
+#include "io/checkpoint.hpp"
+#include "io/fields_out.hpp"
+#include "io/probes.hpp"
+#include "kernels/reductions.hpp"
+#include "scene/reader.hpp"
+
+namespace voigt {
+
+namespace fs = std::filesystem;
+
+namespace {
+// SIGINT/SIGTERM: the handler only records the signal; the time loop acts on
+// it between steps, collectively (an MPI_MAX over ranks), so a signal that
+// reaches one rank stops them all at the same step.
+volatile std::sig_atomic_t gSignal = 0;
+extern "C" void onSignal(int s) { gSignal = s; }
+
+struct SignalGuard {
+  struct sigaction oldInt{}, oldTerm{};
+  bool on = false;
+  explicit SignalGuard(bool enable) : on(enable) {
+    if (!on) return;
+    gSignal = 0;
+    struct sigaction sa{};
+    sa.sa_handler = onSignal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART | SA_RESETHAND; // a second Ctrl-C kills at once
+    sigaction(SIGINT, &sa, &oldInt);
+    sigaction(SIGTERM, &sa, &oldTerm);
+  }
+  ~SignalGuard() {
+    if (!on) return;
+    sigaction(SIGINT, &oldInt, nullptr);
+    sigaction(SIGTERM, &oldTerm, nullptr);
+  }
+};
+} // namespace
+
+RunResult Simulation::run() {
+  const Grid& g = st_.grid;
+  SignalGuard signals(opt_.handleSignals);
+  std::string ckFile;
+  if (!opt_.restart.empty()) ckFile = findCheckpoint(g.comm, opt_.restart);
+  if (!opt_.outDir.empty()) {
+    prepareOutputDir();
+    writer_ = std::make_unique<FieldWriter>(g, opt_.outDir);
+    checkpointer_ = std::make_unique<Checkpointer>(g, opt_.outDir, ck_.keep);
+  }
+  initialize();
+  const double tEnd = opt_.endTime > 0 ? opt_.endTime : scene_.time.endTime;
+  const long maxSteps = opt_.maxSteps >= 0 ? opt_.maxSteps : scene_.time.maxSteps;
+  nextOutput_ = scene_.output.interval > 0 ? scene_.output.interval : tEnd;
+  if (!ckFile.empty()) {
+    const nlohmann::json ckMeta = restore(ckFile);
+    if (g.rank == 0) {
+      std::cout << "restart: " << ckFile << " (step " << st_.step << ", t = " << st_.t << ")" << std::endl;
+      // Rows a crashed run wrote after its checkpoint are written again.
+      if (!opt_.outDir.empty()) truncateOutputs(opt_.outDir, ckMeta.value("output_file_sizes", nlohmann::json::object()));
+    }
+  }
+  if (!opt_.outDir.empty()) probes_ = std::make_unique<ProbeSet>(g, scene_.probes, opt_.outDir, ckFile.empty() ? -1 : st_.t);
+  if (ckFile.empty()) output(true);
+  const bool tty = opt_.progress && isatty(2) && g.rank == 0;
+  const double w0 = MPI_Wtime();
+  const long step0 = st_.step;
+  RunResult r;
+  auto finish = [&]() {
+    r.steps = st_.step;
+    r.simTime = st_.t;
+    r.wallSeconds = MPI_Wtime() - w0;
+    r.cellStepsPerSecond = r.wallSeconds > 0 ? double(g.cellsGlobal()) * (st_.step - step0) / r.wallSeconds : 0;
+  };
+  // A blow-up: write the last good state, the summary, and stop (collective).
+  auto blowUp = [&](std::string msg, bool currentIsGood) {
+    if (checkpointer_) {
+      std::string path;
+      if (currentIsGood) path = writeCheckpoint(st_.fields, checkpointMeta());
+      else if (haveBackup_) path = writeCheckpoint(backup_, backupMeta_);
+      if (!path.empty())
+        msg += "; last good state (step " +
+               std::to_string(currentIsGood ? st_.step : backupMeta_.at("step").get<long>()) + ") written to " + path;
+      else
+        msg += "; no last good state kept (checkpoint.last_good is false)";
+    }
+    finish();
+    writeSummary(r, msg);
+    throw BlowUp(msg);
+  };
+  while (st_.t < tEnd * (1 - 1e-12) && (maxSteps < 0 || st_.step < maxSteps)) {
+    int sig = gSignal, anySig = 0;
+    if (opt_.handleSignals) {
+      MPI_Allreduce(&sig, &anySig, 1, MPI_INT, MPI_MAX, g.comm);
+      if (anySig) {
+        r.signal = anySig;
+        break;
+      }
+    }
+    const double dt = chooseDt(tEnd, scene_.output.interval > 0 ? nextOutput_ : tEnd);
+    if (!std::isfinite(dt) || dt <= 0 || (dt < scene_.time.minDt && dt < tEnd - st_.t)) {
+      std::ostringstream os;
+      os << "blow-up: time step collapsed to " << dt << " (time.min_dt = " << scene_.time.minDt << ") at step "
+         << st_.step << ", t = " << st_.t << ", limited by " << st_.dtReason << fastestNode();
+      blowUp(os.str(), true);
+    }
+    dtReasons_[st_.dtReason.substr(0, st_.dtReason.find(" ("))] += 1;
+    snapshot();
+    try {
+      advance(dt);
+    } catch (const BlowUp& e) {
+      blowUp(e.what(), false);
+    }
+    writeTimeSeries();
+    output(false);
+    if (ck_.interval > 0 && st_.step % ck_.interval == 0 && checkpointer_)
+      r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    if (tty) {
+      const double el = MPI_Wtime() - w0, eta = el / st_.t * (tEnd - st_.t);
+      fprintf(stderr, "\rstep %ld  t = %.5g  dt = %.3g (%s)  ETA %.0f s   ", st_.step, st_.t, st_.dt,
+              st_.dtReason.c_str(), eta);
+    }
+  }
+  if (tty) fprintf(stderr, "\n");
+  finish();
+  if (r.signal) {
+    if (checkpointer_ && lastCheckpointStep_ != st_.step) r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    else if (checkpointer_ && r.checkpoint.empty()) r.checkpoint = findCheckpoint(g.comm, opt_.outDir);
+    writeSummary(r, std::string("signal ") + (r.signal == SIGINT ? "SIGINT" : r.signal == SIGTERM ? "SIGTERM" : "?"));
+    return r;
+  }
+  // A run with checkpoints ends with one, so it can be extended (--restart --end-time ...);
+  // before the final forced output, which a longer run would not have made.
+  if (ck_.interval > 0 && checkpointer_ && lastCheckpointStep_ != st_.step)
+    r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+  if (scene_.output.interval == 0 || outputIndex_ == 0 || nextOutput_ - scene_.output.interval < st_.t - 1e-12)
+    output(true);
+  writeSummary(r, "");
+  return r;
+}
+
+} // namespace voigt
