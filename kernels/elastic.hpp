@@ -69,17 +69,9 @@
 namespace voigt {
 namespace elastic {
 
-using IntList = Kokkos::View<int*, MemSpace>;
+using voigt::IntList;
 
-struct Unpack {
-  int e0, e1;
-  KOKKOS_INLINE_FUNCTION void operator()(int p, int& i, int& j, int& k) const {
-    i = p % e0;
-    const int t = p / e0;
-    j = t % e1;
-    k = t / e1;
-  }
-};
+using voigt::Unpack; // core/index_space.hpp
 
 // Symmetric tensor as a 3x3 array <-> the six stored components (xx, yy, zz, xy, yz, zx).
 KOKKOS_INLINE_FUNCTION void unpackSym(const double s[6], double t[3][3]) {

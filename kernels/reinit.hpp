@@ -56,7 +56,7 @@
 namespace voigt {
 namespace reinit {
 
-using IntList = Kokkos::View<int*, MemSpace>;
+using voigt::IntList;
 using RealList = Kokkos::View<double*, MemSpace>;
 
 // BandViews::flags bits. kEno << d: the 5-point ENO stencil along axis d lies in the band.
@@ -71,15 +71,7 @@ struct BandViews {
   RealList coef;  // f_c / INT H' f (0 without the constraint or where INT ~ 0)
 };
 
-struct Unpack {
-  int e0, e1;
-  KOKKOS_INLINE_FUNCTION void operator()(int p, int& i, int& j, int& k) const {
-    i = p % e0;
-    const int t = p / e0;
-    j = t % e1;
-    k = t / e1;
-  }
-};
+using voigt::Unpack; // core/index_space.hpp
 
 KOKKOS_INLINE_FUNCTION double minmod(double a, double b) { // branch-free: this is the hot loop
   return (std::copysign(0.5, a) + std::copysign(0.5, b)) * std::fmin(std::fabs(a), std::fabs(b));

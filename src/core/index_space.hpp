@@ -32,4 +32,17 @@ inline Range3 nodeRange(const Grid& g, int grow = 0) {
   return r;
 }
 
+// Packed lists of cells (narrow bands: reinit, elastic stress): local index
+// p = i + e0 (j + e1 k) with e = Grid::ext, looped over by a 1-D RangePolicy.
+using IntList = Kokkos::View<int*, MemSpace>;
+struct Unpack {
+  int e0, e1;
+  KOKKOS_INLINE_FUNCTION void operator()(int p, int& i, int& j, int& k) const {
+    i = p % e0;
+    const int t = p / e0;
+    j = t % e1;
+    k = t / e1;
+  }
+};
+
 } // namespace voigt
