@@ -1,5 +1,5 @@
-// Objectivity of the Jaumann update (Eq. 13/16 with NOTES.md errata 1-3), and
-// the elasticity effect's scene plumbing.
+// Objectivity of the Jaumann update (Eq. 13/16 with NOTES.md errata 1-3); the
+// scene plumbing is in test_elasticity_scene.cpp.
 //
 // A pre-stressed disk (cylinder along z) off the rotation centre is carried by
 // a prescribed rigid rotation (prescribed_flow + level_set + elasticity) through
@@ -234,16 +234,6 @@ void advanceTo(Simulation& sim, double t, std::vector<double>& dts) {
   }
 }
 
-std::string errorOf(const std::string& yaml) {
-  try {
-    Simulation sim(test::scene(yaml), MPI_COMM_WORLD, RunOptions{});
-    sim.initialize();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // rotation: explicit (erratum 2 literally): first order, amplitude grows.
 void rotate(int n, double cfl, const std::string& tag, bool checkPaper, std::vector<double> degrees) {
   Simulation sim(test::scene(rotationScene(n, cfl, "explicit")), MPI_COMM_WORLD, RunOptions{});
@@ -462,77 +452,4 @@ TEST(Objectivity, CayleyKernelGeneralAxis) {
   EXPECT_LT(maxDiff(c, closed), 1e-11);
   EXPECT_LT(std::abs(frob(c) / frob(kTau0) - 1), 1e-12);
   EXPECT_GT(frob(e) / frob(kTau0) - 1, 0.1 * (std::pow(1 + wn * wn * dt * dt / 4, steps) - 1));
-}
-
-TEST(ElasticityScene, NoStressFieldsWithoutElasticity) {
-  auto s = test::scene(
-      "domain: {cells: [8,8,8]}\n"
-      "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\nfluid: air\n"
-      "effects: [navier_stokes, level_set]\n"
-      "level_set: {phase: rubber, shape: {type: sphere, center: [0.5,0.5,0.5], radius: 0.2}}\n"
-      "output: {enabled: false}\n");
-  Simulation sim(s, MPI_COMM_WORLD, RunOptions{});
-  sim.initialize();
-  for (auto& n : sim.state().fields.allocatedNames()) {
-    EXPECT_EQ(n.rfind("solid_stress", 0), std::string::npos) << n;
-    EXPECT_NE(n, "S2");
-    EXPECT_NE(n, "log10_S2");
-  }
-  EXPECT_EQ(sim.effect("elasticity"), nullptr);
-}
-
-TEST(ElasticityScene, ModuliAndErrors) {
-  const std::string base =
-      "domain: {cells: [8,8,8]}\nfluid: air\neffects: [navier_stokes, level_set, elasticity]\n"
-      "level_set: {phase: rubber, shape: {type: sphere, center: [0.5,0.5,0.5], radius: 0.2}}\n"
-      "output: {enabled: false}\n";
-  // E and nu: mu_S = E / (2 (1 + nu)).
-  {
-    Simulation sim(test::scene(base + "materials: {rubber: {density: 100, youngs_modulus: 3000, poisson_ratio: 0.5},"
-                                      " air: {density: 1}}\n"),
-                   MPI_COMM_WORLD, RunOptions{});
-    sim.initialize();
-    auto* e = dynamic_cast<Elasticity*>(sim.effect("elasticity"));
-    ASSERT_NE(e, nullptr);
-    EXPECT_DOUBLE_EQ(e->shearModulus(), 1000.0);
-    EXPECT_DOUBLE_EQ(e->kelvinVoigtViscosity(), 0.0);
-    EXPECT_EQ(e->rotation(), elastic::Rotation::Cayley); // the default
-    nlohmann::json j;
-    e->summary(sim.state(), j);
-    EXPECT_EQ(j["elasticity"]["rotation"], "cayley");
-    const DtLimit l = sim.stableDt();
-    EXPECT_EQ(l.reason, "elastic wave");
-    EXPECT_NEAR(l.dt, 0.5 * (1.0 / 8) / std::sqrt(1000.0 / 100), 1e-15);
-    for (const char* k : {"elastic_energy", "max_S2", "stress_cells"}) EXPECT_TRUE(sim.state().diag.count(k)) << k;
-  }
-  std::string e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000, youngs_modulus: 3000,"
-                                 " poisson_ratio: 0.5}, air: {density: 1}}\n");
-  EXPECT_NE(e.find("youngs_modulus"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100, youngs_modulus: 3000}, air: {density: 1}}\n");
-  EXPECT_NE(e.find("poisson_ratio"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100}, air: {density: 1}}\n");
-  EXPECT_NE(e.find("shear_modulus"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
-                     "elasticity: {bnad: 3}\n");
-  EXPECT_NE(e.find("bnad"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
-                     "elasticity: {initial_stress: {xz: 1}}\n");
-  EXPECT_NE(e.find("xz"), std::string::npos) << e;
-  {
-    Simulation sim(test::scene(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
-                                      "elasticity: {rotation: explicit}\n"),
-                   MPI_COMM_WORLD, RunOptions{});
-    sim.initialize();
-    auto* el = dynamic_cast<Elasticity*>(sim.effect("elasticity"));
-    ASSERT_NE(el, nullptr);
-    EXPECT_EQ(el->rotation(), elastic::Rotation::Explicit);
-    nlohmann::json j;
-    el->summary(sim.state(), j);
-    EXPECT_EQ(j["elasticity"]["rotation"], "explicit");
-  }
-  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
-                     "elasticity: {rotation: jaumann}\n");
-  EXPECT_NE(e.find("rotation"), std::string::npos) << e;
-  e = errorOf("domain: {cells: [8,8,8]}\neffects: [navier_stokes, elasticity]\noutput: {enabled: false}\n");
-  EXPECT_NE(e.find("level_set"), std::string::npos) << e;
 }
