@@ -150,6 +150,31 @@ void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u) {
   }
 }
 
+void fillNodeGhostsEven(const Grid& g, const Field& f) {
+  for (int d = 0; d < 3; ++d) {
+    for (int side = 0; side < 2; ++side) {
+      if (side == 0 ? !g.atLo(d) : !g.atHi(d)) continue;
+      const int lb = side == 0 ? g.ng : g.local(d, g.n[d]), dir = side == 0 ? -1 : 1;
+      Range3 r{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};
+      r.b[d] = 0;
+      r.e[d] = 1;
+      const int ng = g.ng, ext = g.ext[d];
+      Kokkos::parallel_for(
+          "node_ghosts_even", r.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+            int idx[3] = {i, j, k};
+            for (int m = 1; m <= ng; ++m) {
+              const int lg = lb + dir * m, li = lb - dir * m;
+              if (lg < 0 || lg >= ext) continue;
+              idx[d] = li;
+              const double v = f(idx[0], idx[1], idx[2]);
+              idx[d] = lg;
+              f(idx[0], idx[1], idx[2]) = v;
+            }
+          });
+    }
+  }
+}
+
 void fillCellGhostsEven(const Grid& g, const Field& f) {
   for (int d = 0; d < 3; ++d) {
     for (int side = 0; side < 2; ++side) {

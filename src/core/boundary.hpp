@@ -29,6 +29,9 @@ void applyFixed(const IntField& mask, const VecField& val, const VecField& u, Ra
 // the boundary value for prescribed components, even for free ones (outflow,
 // slip tangential). Call after the halo exchange.
 void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u);
+// Ghost nodes of a scalar node field beyond physical faces by even reflection
+// about the boundary node (the node density of the momentum advection).
+void fillNodeGhostsEven(const Grid& g, const Field& f);
 // Ghost cells beyond physical faces by even reflection (zero normal gradient).
 void fillCellGhostsEven(const Grid& g, const Field& f);
 

@@ -288,6 +288,7 @@ void readSettings(const Section& top, Scene& sc) {
 
   Section a = top.section("advection");
   sc.advection.limiter = a.choice("limiter", sc.advection.limiter, {"minmod", "van_leer", "mc", "none"});
+  sc.advection.momentum = a.choice("momentum", sc.advection.momentum, {"auto", "conservative", "velocity"});
   a.finish();
 
   Section o = top.section("output");

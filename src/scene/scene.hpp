@@ -54,6 +54,9 @@ struct ProjectionCfg {
 
 struct AdvectionCfg {
   std::string limiter = "minmod"; // minmod | van_leer | mc | none (unlimited, Fromm)
+  // Momentum advection: conservative (rho and rho u with one flux), velocity
+  // (-[div(u u) - u div_h u]), or auto: conservative when phases differ in density.
+  std::string momentum = "auto";
 };
 
 struct TimeCfg {

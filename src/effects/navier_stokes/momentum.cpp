@@ -2,6 +2,12 @@
 //   du/dt = R(u) = -[div(u u) - u div_h u] + (1/rho) div(tau) + f/rho - (1/rho) G p^n
 // integrated with SSP-RK2 (Heun):
 //   u1 = u^n + dt R(u^n);   u* = (u^n + u1 + dt R(u1)) / 2
+// Where the density varies (two phases) the advection is conservative: the node
+// density r (r0 = rho^n) and m = r u advance together with one flux
+// (kernels/advection.hpp), the other terms as forces r0 R_f:
+//   r1 = r0 + dt Rr(r0, u^n),          u1 = r0 (u^n + dt R(u^n)) / r1
+//   r* = (r0 + r1 + dt Rr(r1, u1))/2,  u* = (r0 u^n + r1 u1 + dt r0 R(u1)) / (2 r*)
+// with R's advective part the momentum rate per r0.
 // then prescribed components are re-imposed (oscillating walls: their values at
 // t^{n+1}). tau comes from the Stress stage (viscous here; elasticity blends its
 // own in, Eq. 9), f from the Forces stage.
@@ -19,12 +25,16 @@ void refreshGhosts(State& st, const VecField& u) {
 }
 } // namespace
 
-void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const VecField& rhs) {
+void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const VecField& rhs, const Field* rho) {
   const Grid& g = st.grid;
   const Range3 nodes = nodeRange(g);
   refreshGhosts(st, u);
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs.c[c], 0.0);
-  for (int c = 0; c < 3; ++c) addNodeAdvection(g, u.c[c], u, rhs.c[c], nodes, limiter_);
+  if (rho)
+    addMomentumAdvection(g, *rho, u, st.fields.scalar("momentum_density"), st.fields.scalar("momentum_density_rhs"),
+                         rhs, nodes, limiter_);
+  else
+    for (int c = 0; c < 3; ++c) addNodeAdvection(g, u.c[c], u, rhs.c[c], nodes, limiter_);
   st.evalU = u;
   st.evalRhs = rhs;
   p.run(Stage::Stress, st);
@@ -32,6 +42,18 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
   addStressDivergence(g, stressField(st.fields), coef, rhs, nodes);
   subtractGradient(g, st.fields.scalar("pressure"), coef, 1.0, rhs, nodes);
   p.run(Stage::Forces, st);
+}
+
+// r0: the node density rho^n (mean of the cells around a node, as the
+// projection's 1/rho), ghosts included for the MUSCL stencil.
+void NavierStokes::nodeDensity(State& st) {
+  const Grid& g = st.grid;
+  GridGeom G(g);
+  Field rho = st.fields.scalar("density"), r0 = st.fields.scalar("momentum_density");
+  Kokkos::parallel_for(
+      "node_density", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) { r0(i, j, k) = G.nodeMean(rho, i, j, k); });
+  st.halo->exchange(r0);
+  fillNodeGhostsEven(g, r0);
 }
 
 // Initial pressure: the pressure that makes the initial acceleration R(u^0)
@@ -44,7 +66,17 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   IntField mask = st.fields.integer("fix_mask");
   Field pr = st.fields.scalar("pressure"), dp = st.fields.scalar("pressure_increment");
   Field rhs = st.fields.scalar("poisson_rhs"), div = st.fields.scalar("divergence");
-  evaluateRhs(st, p, u, acc);
+  if (conservative_) { // du/dt = (dm/dt - u dr/dt) / r0
+    nodeDensity(st);
+    Field r0 = st.fields.scalar("momentum_density"), rr = st.fields.scalar("momentum_density_rhs");
+    evaluateRhs(st, p, u, acc, &r0);
+    Kokkos::parallel_for(
+        "velocity_rate", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          for (int d = 0; d < 3; ++d) acc.c[d](i, j, k) -= u.c[d](i, j, k) * rr(i, j, k) / r0(i, j, k);
+        });
+  } else {
+    evaluateRhs(st, p, u, acc);
+  }
   Kokkos::parallel_for(
       "fixed_no_acceleration", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
         const int m = mask(i, j, k);
@@ -89,18 +121,43 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
       addObstacleMask(g, scene_->obstacles, mask, val);
   }
 
-  evaluateRhs(st, p, u, rhs);
+  if (!conservative_) {
+    evaluateRhs(st, p, u, rhs);
+    Kokkos::parallel_for(
+        "rk2_stage1", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          for (int c = 0; c < 3; ++c) u.c[c](i, j, k) += dt * rhs.c[c](i, j, k);
+        });
+    applyFixed(mask, val, u, nodes);
+    evaluateRhs(st, p, u, rhs);
+    Kokkos::parallel_for(
+        "rk2_stage2", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          for (int c = 0; c < 3; ++c)
+            u.c[c](i, j, k) = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
+        });
+    applyFixed(mask, val, u, nodes);
+    return;
+  }
+  // Conservative form (header). A prescribed node keeps its value, so its
+  // momentum is r u with the prescribed u: no special case needed.
+  nodeDensity(st);
+  Field r0 = st.fields.scalar("momentum_density"), r1 = st.fields.scalar("momentum_density_stage");
+  Field rr = st.fields.scalar("momentum_density_rhs");
+  evaluateRhs(st, p, u, rhs, &r0);
   Kokkos::parallel_for(
-      "rk2_stage1", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        for (int c = 0; c < 3; ++c) u.c[c](i, j, k) += dt * rhs.c[c](i, j, k);
+      "rk2_stage1_conservative", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double a = r0(i, j, k), b = a + dt * rr(i, j, k);
+        r1(i, j, k) = b;
+        for (int c = 0; c < 3; ++c) u.c[c](i, j, k) = a * (u.c[c](i, j, k) + dt * rhs.c[c](i, j, k)) / b;
       });
   applyFixed(mask, val, u, nodes);
-
-  evaluateRhs(st, p, u, rhs);
+  st.halo->exchange(r1);
+  fillNodeGhostsEven(g, r1);
+  evaluateRhs(st, p, u, rhs, &r1);
   Kokkos::parallel_for(
-      "rk2_stage2", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+      "rk2_stage2_conservative", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double a = r0(i, j, k), b = r1(i, j, k), r = 0.5 * (a + b + dt * rr(i, j, k));
         for (int c = 0; c < 3; ++c)
-          u.c[c](i, j, k) = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
+          u.c[c](i, j, k) = (a * u0.c[c](i, j, k) + b * u.c[c](i, j, k) + dt * a * rhs.c[c](i, j, k)) / (2 * r);
       });
   applyFixed(mask, val, u, nodes);
 }

@@ -37,12 +37,15 @@ class NavierStokes : public Effect {
   void refreshCoefficients(State& st);
 
  private:
-  void evaluateRhs(State& st, Pipeline& p, const VecField& u, const VecField& rhs);
+  // rho: the node density the momentum advection transports (conservative form).
+  void evaluateRhs(State& st, Pipeline& p, const VecField& u, const VecField& rhs, const Field* rho = nullptr);
+  void nodeDensity(State& st);
   void initialVelocity(State& st);
   void initialPressure(State& st, Pipeline& p);
 
   const Scene* scene_ = nullptr;
   Limiter limiter_ = Limiter::MinMod;
+  bool conservative_ = false; // momentum advection in conservative form
   std::unique_ptr<PoissonSolver> solver_;
   Pipeline* pipeline_ = nullptr;
   double pRef_ = 0; // outflow pressure: stored p is relative to it

@@ -23,6 +23,15 @@ void NavierStokes::configure(const Scene& s) {
   const std::string& l = s.advection.limiter;
   limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
                                                                                        : Limiter::MinMod;
+  // Conservative momentum advection where the density varies: two phases of
+  // different density (velocity form at ratio 1000 creates energy).
+  bool varying = false;
+  if (std::find(s.effects.begin(), s.effects.end(), "level_set") != s.effects.end()) {
+    const YAML::Node ph = s.root["level_set"]["phase"]; // validated by the level_set effect
+    const auto m = ph && ph.IsScalar() ? s.materials.find(ph.Scalar()) : s.materials.end();
+    varying = m == s.materials.end() || m->second.density != s.fluidMaterial().density;
+  }
+  conservative_ = s.advection.momentum == "conservative" || (s.advection.momentum == "auto" && varying);
   bool haveOutflow = false;
   for (int i = 0; i < 6; ++i) {
     const FaceBc& f = s.bc[i];
@@ -47,6 +56,9 @@ void NavierStokes::declareFields(FieldStore& f) const {
   f.declare("proj_coef", Centring::Node, 3, me);
   f.declare("fix_value", Centring::Node, 3, me);
   f.declare("fix_mask", Centring::Node, 1, me, true);
+  if (conservative_)
+    for (const char* n : {"momentum_density", "momentum_density_stage", "momentum_density_rhs"})
+      f.declare(n, Centring::Node, 1, me);
   for (const char* n : {"tau_xx", "tau_yy", "tau_zz", "tau_xy", "tau_yz", "tau_zx"})
     f.declare(n, Centring::Cell, 1, me);
   for (const char* n : {"pressure", "pressure_increment", "poisson_rhs", "divergence", "density", "viscosity"})
@@ -109,7 +121,9 @@ void NavierStokes::restored(State& st) {
 
 void NavierStokes::registerTasks(Pipeline& p) {
   pipeline_ = &p;
-  p.add(Stage::Momentum, name(), "SSP-RK2 predictor: MUSCL advection + stress + forces - grad p^n",
+  p.add(Stage::Momentum, name(),
+        std::string("SSP-RK2 predictor: MUSCL advection (") + (conservative_ ? "conservative rho u" : "velocity form") +
+            ") + stress + forces - grad p^n",
         [this](State& st) { momentum(st, *pipeline_); });
   p.add(Stage::Stress, name(), "viscous stress mu D at cells (Eq. 10)", [](State& st) {
     viscousStress(st.grid, st.evalU, st.fields.scalar("viscosity"), stressField(st.fields),
