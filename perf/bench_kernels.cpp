@@ -1,28 +1,49 @@
-// Per-kernel throughput (Google Benchmark): cell updates per second and the
-// effective bandwidth from a minimal-traffic byte count per cell (each array
-// read or written once per cell; stencil reuse assumed from cache).
-// Usage: perf_kernels [--benchmark_filter=...] ; grid size from VOIGT_BENCH_N (default 64).
+// Per-kernel throughput (Google Benchmark), every kernel family: advection,
+// stress, elastic stress, reinit, projection pieces, Poisson (Tpetra).
+// Columns: cell updates per second (items_per_second), effective bandwidth
+// GBps from a minimal byte count per cell (each array a kernel call touches
+// read or written once per cell, stencil reuse assumed from cache; stated
+// beside each benchmark), and frac_triad = GBps / the STREAM triad bandwidth
+// measured at start in this process (3 x 80 MB, best of 5; or VOIGT_TRIAD_GBS
+// from a perf_stream run), both timed by CPU time on a single-threaded backend
+// (perf/common.hpp seconds()). Band kernels count band cells only.
+// Usage: perf_kernels [--benchmark_filter=...] ; grid n^3 from VOIGT_BENCH_N (64).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <memory>
 
 #include "common.hpp"
 #include "core/halo.hpp"
 #include "kernels/advection.hpp"
+#include "kernels/elastic.hpp"
+#include "kernels/levelset.hpp"
 #include "kernels/projection_ops.hpp"
+#include "kernels/reinit.hpp"
 #include "kernels/stress.hpp"
+#include "solvers/poisson.hpp"
 
 using namespace voigt;
 
 namespace {
+double gTriad = 0; // STREAM triad, bytes per second
+
 struct Fixture {
   Grid g;
   VecField u, rhs, coef;
-  Field p, div, mu;
-  SymTensorField tau;
+  Field p, div, mu, psi, rhsCell, psi1, psiT, dH, old;
+  SymTensorField tau, tauS;
+  IntList owned, grown; // elastic band (psi > -(kappa + 3 h)): owned cells, one ghost layer more
+  int nOwned = 0, nGrown = 0;
+  reinit::BandViews band; // reinit band |psi| < 6 h
+  int nBand = 0;
+  double h = 0;
   Fixture() {
     const int n = getenv("VOIGT_BENCH_N") ? atoi(getenv("VOIGT_BENCH_N")) : 64;
     g = makeGrid(MPI_COMM_SELF, {n, n, n}, {0, 0, 0}, {1, 1, 1}, {true, true, true});
+    h = g.h[0];
     auto mk = [&](const char* name) { return Field(std::string(name), g.ext[0], g.ext[1], g.ext[2]); };
     for (int c = 0; c < 3; ++c) {
       u.c[c] = mk("u");
@@ -30,18 +51,41 @@ struct Fixture {
       coef.c[c] = mk("coef");
       Kokkos::deep_copy(coef.c[c], 1.0);
     }
-    for (int c = 0; c < 6; ++c) tau.c[c] = mk("tau");
-    p = mk("p");
-    div = mk("div");
-    mu = mk("mu");
+    for (int c = 0; c < 6; ++c) {
+      tau.c[c] = mk("tau");
+      tauS.c[c] = mk("tau_S");
+      Kokkos::deep_copy(tauS.c[c], c < 3 ? 1.0 : 0.1);
+    }
+    p = mk("p"), div = mk("div"), mu = mk("mu"), psi = mk("psi"), rhsCell = mk("rhs_cell");
+    psi1 = mk("psi1"), psiT = mk("psiT"), dH = mk("dH"), old = mk("old");
     Kokkos::deep_copy(mu, 1e-3);
     auto uu = u;
+    auto ps = psi, pp = p;
+    const int ng = g.ng;
+    const double hh = h;
+    // A sphere of radius 0.3 (psi > 0 inside: the solid; |psi| the distance) and a smooth flow.
     Kokkos::parallel_for(
         Policy3({0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}), KOKKOS_LAMBDA(int i, int j, int k) {
           uu.c[0](i, j, k) = std::sin(0.1 * i) * std::cos(0.2 * j);
           uu.c[1](i, j, k) = std::cos(0.1 * i) * std::sin(0.3 * k);
           uu.c[2](i, j, k) = std::sin(0.2 * j + 0.1 * k);
+          const double x = (i - ng + 0.5) * hh - 0.5, y = (j - ng + 0.5) * hh - 0.5, z = (k - ng + 0.5) * hh - 0.5;
+          ps(i, j, k) = 0.3 - std::sqrt(x * x + y * y + z * z);
+          pp(i, j, k) = std::cos(6.0 * x) * std::sin(4.0 * y + z);
         });
+    const size_t cap = size_t(g.cellsOwned());
+    const size_t capG = size_t(cellRange(g, 1).size());
+    owned = IntList("owned", cap), grown = IntList("grown", capG);
+    nOwned = elastic::buildActiveList(g, psi, -5 * h, cellRange(g), owned);
+    nGrown = elastic::buildActiveList(g, psi, -5 * h, cellRange(g, 1), grown);
+    band.cell = IntList("band", cap), band.flags = IntList("flags", cap);
+    band.sgn = reinit::RealList("sgn", cap), band.dist = reinit::RealList("dist", cap);
+    band.coef = reinit::RealList("coef", cap);
+    nBand = reinit::buildBandList(g, psi, 6 * h, band.cell);
+    Kokkos::deep_copy(psi1, psi), Kokkos::deep_copy(psiT, psi);
+    reinit::deltaField(g, psi, dH, 2 * h);
+    reinit::prepareBand(g, band, nBand, psi, dH, 6 * h, true);
+    Kokkos::fence();
   }
 };
 Fixture* gFixture = nullptr; // freed before Kokkos::finalize
@@ -50,77 +94,202 @@ Fixture& fx() {
   return *gFixture;
 }
 
-void report(benchmark::State& s, double doublesPerCell) {
-  const double cells = double(fx().g.cellsOwned());
+// Rates per benchmark iteration: `cells` updates of `bytesPerCell` bytes each.
+void report(benchmark::State& s, double bytesPerCell, double cells = -1) {
+  if (cells < 0) cells = double(fx().g.cellsOwned());
+  using C = benchmark::Counter;
   s.SetItemsProcessed(int64_t(s.iterations() * cells));
-  s.SetBytesProcessed(int64_t(s.iterations() * cells * doublesPerCell * 8));
+  s.counters["GBps"] = C(cells * bytesPerCell / 1e9, C::kIsIterationInvariantRate);
+  s.counters["frac_triad"] = C(cells * bytesPerCell / gTriad, C::kIsIterationInvariantRate);
+  s.counters["cells"] = cells;
 }
-
-// 3 components, reads u (3) and writes rhs (1) per component: 3*(3+2) doubles.
-void BM_NodeAdvection(benchmark::State& s) {
-  auto& f = fx();
+template <class F>
+void loop(benchmark::State& s, F&& f) {
   for (auto _ : s) {
-    for (int c = 0; c < 3; ++c) addNodeAdvection(f.g, f.u.c[c], f.u, f.rhs.c[c], nodeRange(f.g), Limiter::MinMod);
+    f();
     Kokkos::fence();
   }
-  report(s, 15);
 }
+
+// --- advection ---
+// Node advection, 3 components: each reads u (3), RMW rhs (2): 3 * 5 doubles.
+void BM_NodeAdvection(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { for (int c = 0; c < 3; ++c) addNodeAdvection(f.g, f.u.c[c], f.u, f.rhs.c[c], nodeRange(f.g), Limiter::MinMod); });
+  report(s, 15 * 8);
+}
+// Level-set advection (cell field by node velocity): psi (1), u (3), RMW rhs (2).
+void BM_LevelSetAdvection(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { addCellAdvection(f.g, f.psi, f.u, f.rhsCell, cellRange(f.g), Limiter::MinMod); });
+  report(s, 6 * 8);
+}
+// --- stress ---
 // Reads u (3) and mu, writes 6 stress components.
 void BM_ViscousStress(benchmark::State& s) {
   auto& f = fx();
-  for (auto _ : s) {
-    viscousStress(f.g, f.u, f.mu, f.tau, cellRange(f.g));
-    Kokkos::fence();
-  }
-  report(s, 10);
+  loop(s, [&] { viscousStress(f.g, f.u, f.mu, f.tau, cellRange(f.g)); });
+  report(s, 10 * 8);
 }
-// Reads 6 stress components and coef (3), read-modify-writes rhs (3).
+// Reads 6 stress components and coef (3), RMW rhs (3).
 void BM_StressDivergence(benchmark::State& s) {
   auto& f = fx();
-  for (auto _ : s) {
-    addStressDivergence(f.g, f.tau, f.coef, f.rhs, nodeRange(f.g));
-    Kokkos::fence();
-  }
-  report(s, 15);
+  loop(s, [&] { addStressDivergence(f.g, f.tau, f.coef, f.rhs, nodeRange(f.g)); });
+  report(s, 15 * 8);
 }
+// --- elastic stress (band of a sphere of radius 0.3, ~17 % of the cells) ---
+// Jaumann/Cayley update (Eq. 16): list index (4 B), u (3), RMW tau_S (12).
+void BM_ElasticJaumann(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { elastic::jaumannUpdate(f.g, f.u, f.tauS, 1.0, 1e-4, f.owned, f.nOwned); });
+  report(s, 15 * 8 + 4, f.nOwned);
+}
+// tau += H(psi) tau_S: list (4 B), psi, tau_S (6), RMW tau (12).
+void BM_ElasticAddStress(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { elastic::addSolidStress(f.g, f.psi, 2 * f.h, f.tauS, f.tau, f.grown, f.nGrown); });
+  report(s, 19 * 8 + 4, f.nGrown);
+}
+// Stress advection, one SSP-RK2 stage of 6 components over the band's box, as
+// effects/elasticity/advect.cpp: per component zero r (1), addCellAdvection (6),
+// q = (1 - a) o + a (q + dt r) (4): 6 * 11 doubles per box cell.
+void BM_ElasticStressAdvection(benchmark::State& s) {
+  auto& f = fx();
+  const Range3 box = elastic::listBox(f.g, f.owned, f.nOwned);
+  loop(s, [&] {
+    for (int c = 0; c < 6; ++c) {
+      Field q = f.tauS.c[c], o = f.old, r = f.rhsCell;
+      Kokkos::parallel_for("bench_rk2_zero", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) { r(i, j, k) = 0; });
+      addCellAdvection(f.g, q, f.u, r, box, Limiter::MinMod);
+      Kokkos::parallel_for(
+          "bench_rk2", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+            q(i, j, k) = 0.5 * o(i, j, k) + 0.5 * (q(i, j, k) + 1e-6 * r(i, j, k));
+          });
+    }
+  });
+  report(s, 66 * 8, double(box.size()));
+}
+// --- reinit (band |psi| < 6 h around the sphere) ---
+// One Eikonal RK stage: list, flags (4 B each), sgn, in, base, out (8 B each).
+void BM_ReinitStage(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { reinit::eikonalStage(f.g, f.band, f.nBand, f.psi, f.psi, f.psi1, 0.0, 0.25 * f.h, false); });
+  report(s, 40, f.nBand);
+}
+// One pseudo-time iteration as levelset/reinit.cpp (volume constraint on, halo
+// refreshes left out): 2 stages (80 B), constraint (list, coef, dH, psiT, psiM,
+// out: 44 B), copy (list, src, dst: 20 B) = 144 B per band cell.
+void BM_ReinitIteration(benchmark::State& s) {
+  auto& f = fx();
+  const double dtau = 0.5 * f.h;
+  loop(s, [&] {
+    reinit::eikonalStage(f.g, f.band, f.nBand, f.psi, f.psi, f.psi1, 0.0, dtau, false);
+    reinit::eikonalStage(f.g, f.band, f.nBand, f.psi1, f.psi, f.psiT, 0.5, dtau, false);
+    reinit::applyConstraint(f.g, f.band, f.nBand, f.psiT, f.psi, f.dH, f.psi1);
+    reinit::copyBand(f.g, f.band, f.nBand, f.psi1, f.psi);
+  });
+  report(s, 144, f.nBand);
+}
+// --- projection pieces ---
 // Reads u (3), writes div (1).
 void BM_Divergence(benchmark::State& s) {
   auto& f = fx();
-  for (auto _ : s) {
-    divergence(f.g, f.u, f.div, cellRange(f.g));
-    Kokkos::fence();
-  }
-  report(s, 4);
+  loop(s, [&] { divergence(f.g, f.u, f.div, cellRange(f.g)); });
+  report(s, 4 * 8);
 }
-// Reads p and coef (3), read-modify-writes u (3).
+// Reads p and coef (3), RMW u (3).
 void BM_SubtractGradient(benchmark::State& s) {
   auto& f = fx();
-  for (auto _ : s) {
-    subtractGradient(f.g, f.p, f.coef, 1e-3, f.u, nodeRange(f.g));
-    Kokkos::fence();
-  }
-  report(s, 10);
+  loop(s, [&] { subtractGradient(f.g, f.p, f.coef, 1e-3, f.u, nodeRange(f.g)); });
+  report(s, 10 * 8);
 }
 // Halo exchange of a vector field (periodic self-exchange on one rank).
 void BM_HaloVector(benchmark::State& s) {
   auto& f = fx();
   Halo h(f.g);
   for (auto _ : s) h.exchange(f.u);
-  report(s, 0);
   s.counters["halo_MB_per_exchange"] = double(h.bytes) / s.iterations() / 1e6;
+}
+// --- Poisson (Tpetra through PoissonSolver) ---
+std::unique_ptr<PoissonSolver> solver(bool exact, const char* pc, int maxIt) {
+  ProjectionCfg cfg;
+  cfg.op = exact ? ProjectionCfg::Op::Exact : ProjectionCfg::Op::Approximate;
+  cfg.preconditioner = pc;
+  cfg.tolerance = 1e-30; // never converges: always maxIt iterations
+  cfg.maxIterations = maxIt;
+  auto s = makePoissonSolver(fx().g, cfg);
+  s->setCoefficients(fx().coef);
+  return s;
+}
+// y = A x through apply(): CRS matvec (nnz x (8 B value + 4 B column) + 8 B row
+// pointer + x + y) plus the field <-> vector copies (32 B). Arg 0: 7-point, 1: 27-point.
+void BM_PoissonMatvec(benchmark::State& s) {
+  auto& f = fx();
+  const bool exact = s.range(0) == 1;
+  auto A = solver(exact, "none", 1);
+  loop(s, [&] { A->apply(f.p, f.div); });
+  report(s, (exact ? 27 : 7) * 12 + 8 + 16 + 32);
+}
+// One CG iteration (7-point): time (perf::seconds) of a 25-iteration solve minus
+// a 5-iteration one, over 20 (so set-up, null-mode removal and residual checks cancel). Bytes:
+// matvec 108 + CG vector updates ~104 (3 axpy, 2 dots); SGS adds a forward and a
+// backward sweep, 2 x (matrix 92 + x RMW 16 + b 8) = 232. Arg 0: none, 1: jacobi, 2: sgs.
+void BM_CGIteration(benchmark::State& s) {
+  auto& f = fx();
+  const char* pcs[3] = {"none", "jacobi", "sgs"};
+  auto s5 = solver(false, pcs[s.range(0)], 5), s25 = solver(false, pcs[s.range(0)], 25);
+  for (auto _ : s) {
+    Kokkos::deep_copy(f.div, 0.0);
+    const double t0 = perf::seconds();
+    s5->solve(f.p, f.div);
+    const double t1 = perf::seconds();
+    Kokkos::deep_copy(f.div, 0.0);
+    const double t2 = perf::seconds();
+    const PoissonStats st = s25->solve(f.p, f.div);
+    const double t3 = perf::seconds();
+    if (st.iterations != 25) s.SkipWithError("CG did not run 25 iterations");
+    s.SetIterationTime(((t3 - t2) - (t1 - t0)) / 20);
+  }
+  const double b[3] = {212, 212 + 40, 212 + 232}; // Jacobi: z = D^-1 r (24) + null-mode removal (~16)
+  report(s, b[s.range(0)]);
 }
 } // namespace
 
-BENCHMARK(BM_NodeAdvection)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ViscousStress)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StressDivergence)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Divergence)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SubtractGradient)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_HaloVector)->Unit(benchmark::kMillisecond);
+// Registered at run time: threaded backends time by wall clock (the default,
+// CPU time, would sum the threads); the triad yardstick uses the same clock.
+void registerAll(bool wall) {
+  auto add = [&](const char* name, void (*f)(benchmark::State&)) {
+    auto* b = benchmark::RegisterBenchmark(name, f)->Unit(benchmark::kMillisecond);
+    if (wall) b->UseRealTime();
+    return b;
+  };
+  add("NodeAdvection", BM_NodeAdvection);
+  add("LevelSetAdvection", BM_LevelSetAdvection);
+  add("ViscousStress", BM_ViscousStress);
+  add("StressDivergence", BM_StressDivergence);
+  add("ElasticJaumann", BM_ElasticJaumann);
+  add("ElasticAddStress", BM_ElasticAddStress);
+  add("ElasticStressAdvection", BM_ElasticStressAdvection);
+  add("ReinitStage", BM_ReinitStage);
+  add("ReinitIteration", BM_ReinitIteration);
+  add("Divergence", BM_Divergence);
+  add("SubtractGradient", BM_SubtractGradient);
+  add("HaloVector", BM_HaloVector);
+  add("PoissonMatvec", BM_PoissonMatvec)->Arg(0)->Arg(1);
+  add("CGIteration", BM_CGIteration)->Arg(0)->Arg(1)->Arg(2)->UseManualTime();
+}
 
 int main(int argc, char** argv) {
   perf::Env env(argc, argv);
   benchmark::Initialize(&argc, argv);
+  // The yardstick, measured in this process unless a perf_stream run gave it.
+  const char* t = getenv("VOIGT_TRIAD_GBS");
+  const bool given = t && atof(t) > 0;
+  gTriad = given ? atof(t) * 1e9 : perf::stream(10000000, 5).gbs[3] * 1e9;
+  registerAll(!perf::singleThreaded());
+  benchmark::AddCustomContext("stream_triad_GBs", std::to_string(gTriad / 1e9) + (given ? " (VOIGT_TRIAD_GBS)" : " (measured)"));
+  std::fprintf(stderr, "STREAM triad: %.2f GB/s (%s, %s time)\n", gTriad / 1e9,
+               given ? "VOIGT_TRIAD_GBS" : "measured, 3 x 80 MB", perf::singleThreaded() ? "CPU" : "wall");
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   if (gFixture) freeGrid(gFixture->g);

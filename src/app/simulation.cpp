@@ -301,6 +301,9 @@ nlohmann::json Simulation::summary(const RunResult& r) const {
   for (int d = 0; d < 3; ++d) vol *= g.hi[d] - g.lo[d];
   j["volume_per_phase"] = {{scene_.fluid, vol}};
   for (auto& e : effects_) e->summary(st_, j);
+  // Wall seconds inside the Poisson solves (CG + preconditioner apply), for perf/scaling/.
+  if (j.contains("poisson") && st_.counters.count("poisson_seconds"))
+    j["poisson"]["solve_seconds"] = st_.counters.at("poisson_seconds");
   return j;
 }
 
