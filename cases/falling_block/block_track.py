@@ -1,16 +1,20 @@
 #!/usr/bin/env python3
 """Block diagnostics from a falling_block run's HDF5 output (Python 3 standard library + h5dump).
 
-Stand-in until the solver writes these itself (README TODO): for every output time, the block
-(cells with psi > 0) centroid, mean velocity, orientation of its thin axis, bending (largest
-deviation of the mid-surface from its best-fit plane), and the gaps to the cylinder and to the
-base; then, from probe_centre.csv (every 0.005 s), the velocity at the block's centre.
+An independent check of the solver's `solid_body` effect (timeseries.csv, every step): at every
+output time the same measures from the written fields, with the same definitions
+(src/effects/solid_body.cpp): weights H(psi) of Eq. (4), centroid, mean velocity, orientation of
+the thin axis, bending (largest deviation of the mid-surface from its best-fit plane), gaps
+min(d(x) - psi(x)) over -2 h < psi < h to the cylinder and to the base; then, from
+probe_centre.csv (every 0.005 s), the velocity at the block's centre.
 
-    cases/falling_block/block_track.py OUTPUT_DIR [--cylinder X Y R] > track.csv
+    cases/falling_block/block_track.py OUTPUT_DIR [--cylinder X Y R] [--sharp] > track.csv
     cases/falling_block/block_track.py OUTPUT_DIR --probes > probes.csv   # every 0.005 s
 
-Cells are counted as solid where psi > 0 (sharp), so positions are good to about h/2.
+--sharp: the earlier stand-in (cells with psi > 0 counted whole, gaps from cell centres minus
+h/2; positions good to about h/2).
 """
+import json
 import math
 import os
 import re
@@ -65,23 +69,85 @@ def frames(outdir):
         yield t, os.path.join(outdir, g.group(1)), dims, orig, sp   # dims, origin, spacing: z y x
 
 
-def analyse(outdir, cyl):
+def heaviside(p, kappa):
+    """Smoothed Heaviside of Eq. (4), as kernels/heaviside.hpp."""
+    if p < -kappa:
+        return 0.0
+    if p > kappa:
+        return 1.0
+    return 0.5 * (1 + p / kappa + math.sin(math.pi * p / kappa) / math.pi)
+
+
+def smoothing_cells(outdir):
+    try:
+        return json.load(open(os.path.join(outdir, "summary.json")))["level_set"]["smoothing_cells"]
+    except (OSError, KeyError, ValueError):
+        return 2.0
+
+
+def plane_deviation(mid):
+    """Largest |s - (p0 + p1 a + p2 b)| over the points (a, b, s), least-squares plane."""
+    if len(mid) < 3:
+        return 0.0
+    A = [[0.0] * 3 for _ in range(3)]
+    rhs = [0.0] * 3
+    for a, b, w in mid:
+        row = (1.0, a, b)
+        for i in range(3):
+            rhs[i] += row[i] * w
+            for j in range(3):
+                A[i][j] += row[i] * row[j]
+
+    def det(M):
+        return (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1])
+                - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
+                + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
+    D = det(A)
+    if D == 0:
+        return 0.0
+    coef = []
+    for col in range(3):   # Cramer's rule
+        M = [row[:] for row in A]
+        for i in range(3):
+            M[i][col] = rhs[i]
+        coef.append(det(M) / D)
+    return max(abs(w - coef[0] - coef[1] * a - coef[2] * b) for a, b, w in mid)
+
+
+def analyse(outdir, cyl, sharp):
+    """Per output time, the solid_body effect's measures (src/effects/solid_body.cpp): weights
+    H(psi) (or 1 where psi > 0 with --sharp), gaps min(d(x) - psi(x)) over -2 h < psi < h."""
     cx, cy, r = cyl
-    print("t,solid_cells,volume,cx,cy,cz,vx,vy,vz,tilt_deg,angle_z_deg,bending,gap_cylinder,gap_base,"
+    kcells = smoothing_cells(outdir)
+    print("t,volume,cx,cy,cz,vx,vy,vz,tilt_deg,angle_z_deg,bending,gap_cylinder,gap_base,"
           "contact_cylinder,contact_base")
     for t, path, (nz, ny, nx), (oz, oy, ox), (hz, hy, hx) in frames(outdir):
         n = nx * ny * nz
+        h = min(hx, hy, hz)
+        kappa = kcells * h
         psi = read_h5(path, "/psi", n)
         vel = read_h5(path, "/velocity", (nx + 1) * (ny + 1) * (nz + 1) * 3)
-        pts, vs = [], []
+        pts, vs, ws = [], [], []
         gcyl, gbase = float("inf"), float("inf")
         for k in range(nz):
             for j in range(ny):
                 for i in range(nx):
-                    if psi[(k * ny + j) * nx + i] <= 0:
-                        continue
+                    ps = psi[(k * ny + j) * nx + i]
                     p = (ox + (i + 0.5) * hx, oy + (j + 0.5) * hy, oz + (k + 0.5) * hz)
+                    if sharp and ps > 0:
+                        gcyl = min(gcyl, math.hypot(p[0] - cx, p[1] - cy) - r - 0.5 * hx)
+                        gbase = min(gbase, p[1] - oy - 0.5 * hy)
+                    elif not sharp and -2 * h < ps < h:
+                        dist = ps
+                        dc = math.hypot(p[0] - cx, p[1] - cy) - r
+                        if dc >= 0 or ps > 0:   # fluid cells inside the cylinder are skipped
+                            gcyl = min(gcyl, dc - dist)
+                            gbase = min(gbase, p[1] - oy - dist)
+                    w = (1.0 if ps > 0 else 0.0) if sharp else heaviside(ps, kappa)
+                    if w <= 0:
+                        continue
                     pts.append(p)
+                    ws.append(w)
                     v = [0.0, 0.0, 0.0]
                     for dk in (0, 1):
                         for dj in (0, 1):
@@ -90,15 +156,14 @@ def analyse(outdir, cyl):
                                 for c in range(3):
                                     v[c] += 0.125 * vel[b + c]
                     vs.append(v)
-                    gcyl = min(gcyl, math.hypot(p[0] - cx, p[1] - cy) - r - 0.5 * hx)
-                    gbase = min(gbase, p[1] - oy - 0.5 * hy)
-        m = len(pts)
-        if m == 0:
+        W = sum(ws)
+        if W == 0:
             print("%g,0" % t)
             continue
-        c = [sum(p[d] for p in pts) / m for d in range(3)]
-        u = [sum(v[d] for v in vs) / m for d in range(3)]
-        cov = [[sum((p[a] - c[a]) * (p[b] - c[b]) for p in pts) / m for b in range(3)] for a in range(3)]
+        c = [sum(w * p[d] for w, p in zip(ws, pts)) / W for d in range(3)]
+        u = [sum(w * v[d] for w, v in zip(ws, vs)) / W for d in range(3)]
+        cov = [[sum(w * (p[a] - c[a]) * (p[b] - c[b]) for w, p in zip(ws, pts)) / W for b in range(3)]
+               for a in range(3)]
         ev, vec = jacobi_eig(cov)
         order = sorted(range(3), key=lambda q: ev[q])
         nrm = [vec[d][order[0]] for d in range(3)]       # thin axis
@@ -108,44 +173,30 @@ def analyse(outdir, cyl):
             nrm = [-q for q in nrm]
         tilt = math.degrees(math.acos(min(1.0, abs(nrm[1]))))
         ang = math.degrees(math.atan2(-nrm[0], nrm[1]))   # rotation of the thin axis about z
-        # Mid-surface: mean normal coordinate in bins of size h over the block's plane.
+        # Mid-surface: weighted mean (a, b, s) in columns h apart over the block's plane.
         bins = {}
-        for p in pts:
+        for w, p in zip(ws, pts):
             d = [p[q] - c[q] for q in range(3)]
             a = sum(d[q] * e1[q] for q in range(3))
             b = sum(d[q] * e2[q] for q in range(3))
-            w = sum(d[q] * nrm[q] for q in range(3))
-            key = (round(a / hx), round(b / hx))
-            s = bins.setdefault(key, [0.0, 0.0, 0.0, 0])
-            s[0] += a; s[1] += b; s[2] += w; s[3] += 1
-        mid = [(s[0] / s[3], s[1] / s[3], s[2] / s[3]) for s in bins.values() if s[3] >= 2]
-        bend = float("nan")
-        if len(mid) >= 3:   # least-squares plane w = p0 + p1 a + p2 b
-            A = [[0.0] * 3 for _ in range(3)]
-            rhs = [0.0] * 3
-            for a, b, w in mid:
-                row = (1.0, a, b)
-                for i in range(3):
-                    rhs[i] += row[i] * w
-                    for j in range(3):
-                        A[i][j] += row[i] * row[j]
-            # Cramer's rule
-            def det(M):
-                return (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1])
-                        - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
-                        + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
-            D = det(A)
-            coef = []
-            for col in range(3):
-                M = [row[:] for row in A]
-                for i in range(3):
-                    M[i][col] = rhs[i]
-                coef.append(det(M) / D)
-            bend = max(abs(w - coef[0] - coef[1] * a - coef[2] * b) for a, b, w in mid)
-        vol = m * hx * hy * hz
-        print("%.5g,%d,%.5g,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.2f,%.2f,%.5f,%.5f,%.5f,%d,%d" % (
-            t, m, vol, c[0], c[1], c[2], u[0], u[1], u[2], tilt, ang, bend, gcyl, gbase,
-            gcyl < hx, gbase < hy))
+            s_ = sum(d[q] * nrm[q] for q in range(3))
+            if sharp:   # the earlier stand-in: nearest column
+                shares = [((math.floor(a / h + 0.5), math.floor(b / h + 0.5)), w)]
+            else:       # bilinear share to the 4 nearest column centres, as the solver
+                fa, fb = a / h, b / h
+                ia, ib = math.floor(fa), math.floor(fb)
+                shares = [((ia + da, ib + db), w * (fa - ia if da else 1 - (fa - ia)) * (fb - ib if db else 1 - (fb - ib)))
+                          for db in (0, 1) for da in (0, 1)]
+            for key, kw in shares:
+                sb = bins.setdefault(key, [0.0, 0.0, 0.0, 0.0])
+                sb[0] += kw * a; sb[1] += kw * b; sb[2] += kw * s_; sb[3] += kw
+        lim = 2 if sharp else 1   # cells (sharp, as before) or one cell's worth of H
+        mid = [(sb[0] / sb[3], sb[1] / sb[3], sb[2] / sb[3]) for sb in bins.values() if sb[3] >= lim]
+        bend = plane_deviation(mid)
+        vol = W * hx * hy * hz
+        print("%.6g,%.6g,%.6f,%.6f,%.6f,%.5f,%.5f,%.5f,%.3f,%.3f,%.6f,%.6f,%.6f,%d,%d" % (
+            t, vol, c[0], c[1], c[2], u[0], u[1], u[2], tilt, ang, bend, gcyl, gbase,
+            gcyl < h, gbase < h))
 
 
 def probes(outdir):
@@ -178,11 +229,11 @@ if __name__ == "__main__":
     args = sys.argv[1:]
     if not args or args[0].startswith("-"):
         sys.exit(__doc__)
-    cyl = (0.035, 0.0375, 0.01)
+    cyl = (0.045, 0.0375, 0.01)   # the scene's cylinder (axis z)
     if "--cylinder" in args:
         i = args.index("--cylinder")
         cyl = tuple(float(v) for v in args[i + 1:i + 4])
     if "--probes" in args:
         probes(args[0])
     else:
-        analyse(args[0], cyl)
+        analyse(args[0], cyl, "--sharp" in args)

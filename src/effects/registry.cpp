@@ -12,6 +12,7 @@ std::unique_ptr<Effect> makeLevelSet();
 std::unique_ptr<Effect> makeReinit();
 std::unique_ptr<Effect> makePrescribedFlow();
 std::unique_ptr<Effect> makeElasticity();
+std::unique_ptr<Effect> makeSolidBody();
 
 const std::vector<EffectInfo>& effectRegistry() {
   static const std::vector<EffectInfo> reg = {
@@ -27,6 +28,8 @@ const std::vector<EffectInfo>& effectRegistry() {
        "prescribed_flow", makePrescribedFlow},
       {"elasticity", "hypoelastic solid: Jaumann-rate stress (Eq. 13/16), transported, blended by H(psi) (Eq. 14)",
        "elasticity", makeElasticity},
+      {"solid_body", "diagnostics of the psi > 0 body: centroid, velocity, orientation, bending, gaps, contacts",
+       "solid_body", makeSolidBody},
   };
   return reg;
 }

@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Block diagnostics against time, one line per run (mu_S), from the solver's `solid_body` effect
+(timeseries.csv every step, contact times in summary.json): centroid height, tilt of the thin
+axis, bending of the mid-surface, and the gaps to the cylinder and the base; contact starts
+(gap < contact_gap) marked. Python 3 + matplotlib.
+
+    cases/falling_block/plots.py -o diagnostics.png --run output/fb_1000 "mu_S = 1000 Pa" \\
+        --run output/fb_5000 "mu_S = 5000 Pa" [--title TEXT]
+
+Also prints a table (markdown) of the contact times, and tilt and bending at the paper's times.
+"""
+import argparse
+import csv
+import json
+import os
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
+
+
+def load(d):
+    cols = {}
+    with open(os.path.join(d, "timeseries.csv")) as f:
+        for r in csv.DictReader(f):
+            for k, v in r.items():
+                try:
+                    cols.setdefault(k, []).append(float(v))
+                except (TypeError, ValueError):
+                    pass
+    summ = json.load(open(os.path.join(d, "summary.json")))
+    return cols, summ
+
+
+def at(cols, key, t):
+    ts = cols["t"]
+    if not ts or t > ts[-1] + 1e-9:
+        return None
+    i = min(range(len(ts)), key=lambda q: abs(ts[q] - t))
+    return cols[key][i]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "LABEL"), required=True)
+    ap.add_argument("--title", default="")
+    ap.add_argument("-o", "--output", required=True)
+    a = ap.parse_args()
+    fig, ax = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    ax = ax.ravel()
+    rows = []
+    for n, (d, label) in enumerate(a.run):
+        cols, summ = load(d)
+        c = "C%d" % n
+        t = cols["t"]
+        sb = summ.get("solid_body", {})
+        cont = sb.get("contacts", {})
+        ax[0].plot(t, [1000 * v for v in cols["solid_cy"]], c, label=label)
+        ax[1].plot(t, cols["solid_tilt_deg"], c, label=label)
+        ax[2].plot(t, [1000 * v for v in cols["solid_bending"]], c, label=label)
+        ax[3].plot(t, [1000 * v for v in cols["solid_gap_obstacle0"]], c, label=label + ": cylinder")
+        ax[3].plot(t, [1000 * v for v in cols["solid_gap_y-"]], c + "--", label=label + ": base")
+        for target, style in (("obstacle0", "v"), ("y-", "s")):
+            for ts in cont.get(target, {}).get("contact_start_times", []):
+                for k, key, scale in ((0, "solid_cy", 1000), (1, "solid_tilt_deg", 1), (2, "solid_bending", 1000)):
+                    ax[k].plot([ts], [scale * at(cols, key, ts)], style, color=c, ms=7, mfc="none")
+        first = {k: cont.get(k, {}).get("first_contact_time") for k in ("obstacle0", "y-")}
+        starts = cont.get("obstacle0", {}).get("contact_start_times", [])
+        rows.append((label, first["obstacle0"], starts[1] if len(starts) > 1 else None, first["y-"],
+                     [at(cols, "solid_tilt_deg", tt) for tt in PAPER_TIMES],
+                     [at(cols, "solid_bending", tt) for tt in PAPER_TIMES]))
+        h = sb.get("contact_gap")
+    if h:
+        ax[3].axhline(1000 * h, color="k", lw=0.8, ls=":", label="contact gap (1 cell)")
+    ax[0].set_ylabel("centroid height (mm)")
+    ax[1].set_ylabel("tilt of the thin axis (deg)")
+    ax[2].set_ylabel("bending: mid-surface off its plane (mm)")
+    ax[3].set_ylabel("gap (mm)")
+    for k in (2, 3):
+        ax[k].set_xlabel("t (s)")
+    ax[0].legend(fontsize=8, title="markers: contact starts (v cylinder, [] base)", title_fontsize=7)
+    ax[3].legend(fontsize=7, ncol=2)
+    for x in ax:
+        x.grid(alpha=0.3)
+    if a.title:
+        fig.suptitle(a.title)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=80)
+    fmt = lambda v, f="%.3f": "-" if v is None else f % v  # noqa: E731
+    print("| run | first contact, cylinder (s) | second contact start, cylinder (s) | first contact, base (s) | "
+          + " | ".join("tilt %.2f s (deg)" % tt for tt in PAPER_TIMES) + " | "
+          + " | ".join("bending %.2f s (mm)" % tt for tt in PAPER_TIMES) + " |")
+    print("|---" * (4 + 2 * len(PAPER_TIMES)) + "|")
+    for label, f1, f2, fb, tilts, bends in rows:
+        print("| %s | %s | %s | %s | %s | %s |" % (
+            label, fmt(f1), fmt(f2), fmt(fb), " | ".join(fmt(v, "%.1f") for v in tilts),
+            " | ".join(fmt(None if v is None else 1000 * v, "%.2f") for v in bends)))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,172 @@
+#!/usr/bin/python3
+"""Figures 4-8 of the paper's porous bed from a set of runs (one per mu_S) of porous_bed.yaml,
+plus the Ergun prediction (paper Eq. 23) for the packing's measured voidage (packing.json).
+Python 3 + numpy + matplotlib + h5py (Debian python3-*).
+
+    cases/porous_bed/plots.py -o DIR --run output/pb/mu_100 100 --run output/pb/mu_1000 1000 [--title T]
+
+Writes DIR/pressure_midline.png (Fig. 4), gradient_midline.png (Fig. 5), gradient_vs_modulus.png
+(Fig. 6: mean -dp/dy over y = 0.10-0.25 m, linear fit, slope, intercept, R^2), pressure_slice.png
+(Fig. 7: mid-plane z, lowest and highest mu_S), deformation.png (Fig. 8: psi = 0 in the mid-plane
+at the first, middle and last output, and the bed centroid's rise against time), and prints a
+markdown table. The midline is the probe `midline` (probe_midline.csv) at its last time.
+"""
+import argparse
+import csv
+import json
+import os
+import re
+
+import h5py
+import matplotlib
+import numpy as np
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+Y0, Y1 = 0.10, 0.25            # the paper's bed interior
+RHO, MU, U, D, G = 1.0, 1e-5, 0.1, 0.025, 9.81
+
+
+def ergun(e):
+    """Paper Eq. (23): -dp/dy of a rigid bed of voidage e (Pa/m)."""
+    return (1 - e) / e ** 3 * RHO * U ** 2 / D * (150 * (1 - e) * MU / (D * U * RHO) + 1.75)
+
+
+def midline(d):
+    rows = {}
+    with open(os.path.join(d, "probe_midline.csv")) as f:
+        for r in csv.DictReader(f):
+            rows.setdefault(float(r["t"]), []).append((float(r["y"]), float(r["pressure"])))
+    t = max(rows)
+    y, p = np.array(sorted(rows[t])).T
+    return t, y, p
+
+
+def frames(d):
+    x = open(os.path.join(d, "fields.xdmf")).read()
+    out = []
+    for g in re.finditer(r'<Grid Name="(fields_\d+\.h5)" GridType="Uniform">(.*?)</Grid>', x, re.S):
+        t = float(re.search(r'<Time Value="([^"]+)"', g.group(2)).group(1))
+        sp = [float(v) for v in re.search(r'Name="Spacing"[^>]*>([^<]+)<', g.group(2)).group(1).split()][::-1]
+        out.append((t, os.path.join(d, g.group(1)), sp))
+    return out
+
+
+def slice_mid(path, name):
+    with h5py.File(path, "r") as f:
+        a = f[name][...]
+    return a[a.shape[0] // 2]          # (y, x) at the middle z
+
+
+def timeseries(d):
+    with open(os.path.join(d, "timeseries.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return np.array([float(r["t"]) for r in rows]), np.array([float(r["solid_cy"]) for r in rows])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "MU_S"), required=True)
+    ap.add_argument("--title", default="")
+    ap.add_argument("-o", "--outdir", required=True)
+    a = ap.parse_args()
+    runs = sorted(((float(m), d) for d, m in a.run))
+    os.makedirs(a.outdir, exist_ok=True)
+    sfx = ("\n" + a.title) if a.title else ""
+    pk = json.load(open(os.path.join(HERE, "packing.json")))["voidage_written"]
+    f4, ax4 = plt.subplots(figsize=(6, 4.5))
+    f5, ax5 = plt.subplots(figsize=(6, 4.5))
+    mus, grads, rows = [], [], []
+    for n, (mu, d) in enumerate(runs):
+        t, y, p = midline(d)
+        gr = -np.gradient(p, y)
+        sel = (y >= Y0) & (y <= Y1)
+        mean = float(np.mean(gr[sel]))
+        c = "C%d" % n
+        ax4.plot(y, p, c, label="mu_S = %g Pa (t = %.3g s)" % (mu, t))
+        ax5.plot(y, gr, c, lw=0.8, label="mu_S = %g Pa" % mu)
+        ax5.plot([Y0, Y1], [mean, mean], c + "--")
+        tt, cy = timeseries(d)
+        mus.append(mu)
+        grads.append(mean)
+        rows.append((mu, t, mean, mean - RHO * G, 1000 * (cy[-1] - cy[0])))
+    for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),
+                             (ax5, f5, "-dp/dy (Pa/m); dashed: mean over 0.10-0.25 m", "gradient_midline.png")):
+        ax.set_xlabel("y (m), midline x = z = 5.5 cm")
+        ax.set_ylabel(lab)
+        ax.axvspan(Y0, Y1, color="0.9")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        ax.set_title(("Fig. 4: pressure on the midline" if ax is ax4 else "Fig. 5: pressure gradient") + sfx, fontsize=9)
+        f.tight_layout()
+        f.savefig(os.path.join(a.outdir, name), dpi=80)
+    # Fig. 6: linear fit of the mean gradient against mu_S.
+    mus, grads = np.array(mus), np.array(grads)
+    f6, ax6 = plt.subplots(figsize=(6, 4.5))
+    ax6.plot(mus, grads, "o", label="Voigt")
+    fit = None
+    if len(mus) >= 2:
+        slope, icpt = np.polyfit(mus, grads, 1)
+        pred = slope * mus + icpt
+        ss = np.sum((grads - grads.mean()) ** 2)
+        r2 = 1 - np.sum((grads - pred) ** 2) / ss if ss > 0 else float("nan")
+        fit = (slope, icpt, r2)
+        xs = np.linspace(0, mus.max() * 1.05, 50)
+        ax6.plot(xs, slope * xs + icpt, "k-", lw=0.8,
+                 label="fit: %.3g mu_S + %.3g Pa/m, R^2 = %.4f" % fit)
+    for e, lab in ((pk["interior"], "interior, full section"), (pk["interior_flow_region"], "interior, outside hold layer")):
+        ax6.axhline(ergun(e), ls=":", color="C3" if "full" in lab else "C2",
+                    label="Ergun, e = %.3f (%s): %.1f Pa/m" % (e, lab, ergun(e)))
+    ax6.axhline(RHO * G, ls="--", color="0.5", label="gas hydrostatic rho g = 9.81 Pa/m")
+    ax6.set_xlabel("mu_S (Pa)")
+    ax6.set_ylabel("mean -dp/dy over y = 0.10-0.25 m (Pa/m)")
+    ax6.set_title("Fig. 6: gradient against shear modulus" + sfx, fontsize=9)
+    ax6.legend(fontsize=7)
+    ax6.grid(alpha=0.3)
+    f6.tight_layout()
+    f6.savefig(os.path.join(a.outdir, "gradient_vs_modulus.png"), dpi=80)
+    # Fig. 7 and 8 from the HDF5 output of the lowest and highest modulus.
+    ends = [runs[0], runs[-1]] if len(runs) > 1 else runs
+    f7, ax7 = plt.subplots(1, len(ends), figsize=(3.8 * len(ends) + 1, 6), squeeze=False)
+    f8, ax8 = plt.subplots(1, len(ends) + 1, figsize=(3.2 * len(ends) + 4, 6), squeeze=False)
+    for n, (mu, d) in enumerate(ends):
+        fr = frames(d)
+        t, path, sp = fr[-1]
+        p, psi = slice_mid(path, "pressure"), slice_mid(path, "psi")
+        ext = [0, sp[0] * p.shape[1], 0, sp[1] * p.shape[0]]
+        im = ax7[0][n].imshow(p, origin="lower", extent=ext, cmap="jet")
+        ax7[0][n].contour(psi, [0], colors="k", linewidths=0.5, origin="lower", extent=ext)
+        ax7[0][n].set_title("mu_S = %g Pa, t = %.3g s" % (mu, t), fontsize=9)
+        f7.colorbar(im, ax=ax7[0][n], label="pressure (Pa)", shrink=0.7)
+        for q, st in zip((fr[0], fr[len(fr) // 2], fr[-1]), (":", "--", "-")):
+            ax8[0][n].contour(slice_mid(q[1], "psi"), [0], colors="k", linestyles=st, linewidths=0.7,
+                              origin="lower", extent=ext)
+            ax8[0][n].plot([], [], "k" + st, label="t = %.3g s" % q[0])
+        ax8[0][n].set_title("psi = 0, mid-plane z, mu_S = %g Pa" % mu, fontsize=9)
+        ax8[0][n].set_aspect("equal")
+        ax8[0][n].legend(fontsize=7, loc="lower right")
+    for mu, d in runs:
+        tt, cy = timeseries(d)
+        ax8[0][-1].plot(tt, 1000 * (cy - cy[0]), label="mu_S = %g Pa" % mu)
+    ax8[0][-1].set_xlabel("t (s)")
+    ax8[0][-1].set_ylabel("rise of the bed's centroid (mm)")
+    ax8[0][-1].legend(fontsize=7)
+    ax8[0][-1].grid(alpha=0.3)
+    f7.suptitle("Fig. 7: pressure, mid-plane z (black: psi = 0)" + sfx, fontsize=9)
+    f8.suptitle("Fig. 8: bed deformation" + sfx, fontsize=9)
+    for f, name in ((f7, "pressure_slice.png"), (f8, "deformation.png")):
+        f.tight_layout()
+        f.savefig(os.path.join(a.outdir, name), dpi=80)
+    print("| mu_S (Pa) | t (s) | mean -dp/dy, 0.10-0.25 m (Pa/m) | minus rho g (Pa/m) | centroid rise (mm) |")
+    print("|---|---|---|---|---|")
+    for r in rows:
+        print("| %g | %.3g | %.1f | %.1f | %.2f |" % r)
+    if fit:
+        print("\nlinear fit: slope %.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.4f" % fit)
+    print("Ergun (Eq. 23): e = %.3f -> %.1f Pa/m; e = %.3f -> %.1f Pa/m" % (
+        pk["interior"], ergun(pk["interior"]), pk["interior_flow_region"], ergun(pk["interior_flow_region"])))
+
+
+if __name__ == "__main__":
+    main()
