@@ -59,7 +59,7 @@
 // (c) |tau / s - R tau0 R^T| = |R(theta_d) tau0 R(theta_d)^T - R tau0 R^T| to
 //     1e-9, and the observed order between cfl 0.5 and 0.25 (90 degrees) > 1.8.
 // (the cfl 0.5 run leaves the key out: it is the scene default.)
-// A kernel-level test checks the Cayley map for a spin about a general axis.
+// test_cayley_kernel.cpp checks the Cayley map for a spin about a general axis.
 // Measured (64 cells; DISABLED_SweepBothSchemes prints the whole table):
 //   error vs R tau0 R^T     90 deg    360 deg   720 deg
 //   explicit, cfl 0.5       1.24e-2   5.04e-2   1.03e-1   (|tau| +1.2%, +4.7%, +9.7%)
@@ -77,9 +77,12 @@
 #include "effects/elasticity/elasticity.hpp"
 #include "kernels/elastic.hpp"
 #include "scene/reader.hpp"
+#include "elasticity/tensor_util.hpp"
 #include "support/flow.hpp"
 
 using namespace voigt;
+using test::frob;
+using test::maxDiff;
 
 namespace {
 
@@ -113,20 +116,9 @@ std::string rotationScene(int n, double cfl, const std::string& rotation) {
 
 // R tau R^T for R the rotation about z by theta.
 void rotateZ(const double t[6], double theta, double out[6]) {
-  double T[3][3];
-  elastic::unpackSym(t, T);
   const double c = std::cos(theta), s = std::sin(theta);
   const double R[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
-  double M[3][3];
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      double v = 0;
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q) v += R[a][p] * T[p][q] * R[b][q];
-      M[a][b] = v;
-    }
-  out[0] = M[0][0]; out[1] = M[1][1]; out[2] = M[2][2];
-  out[3] = M[0][1]; out[4] = M[1][2]; out[5] = M[2][0];
+  test::rotateSym(R, t, out);
 }
 
 // The Benson map replayed for a rigid rotation (L exact, D = 0) over the dt sequence.
@@ -142,17 +134,6 @@ double cayleyAngle(const std::vector<double>& dts, double omega = kOmega) {
   double a = 0;
   for (double dt : dts) a += 4 * std::atan(omega * dt / 4);
   return a;
-}
-
-// Frobenius norm of a symmetric tensor given by its six components.
-double frob(const double t[6]) {
-  return std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2] + 2 * (t[3] * t[3] + t[4] * t[4] + t[5] * t[5]));
-}
-
-double maxDiff(const double a[6], const double b[6]) {
-  double m = 0;
-  for (int c = 0; c < 6; ++c) m = std::max(m, std::abs(a[c] - b[c]));
-  return m;
 }
 
 // Predicted amplitude error of the scheme (header comment): in-plane deviatoric
@@ -391,65 +372,4 @@ TEST(Objectivity, PaperSpinTurnsTwiceAsFast) {
   EXPECT_LT(maxDiff(cpaper, dpaper), 1e-11);
   EXPECT_LT(maxDiff(cstd, exact1), 1e-3 * predictedError(dts2)); // far below the explicit map's error
   EXPECT_GT(maxDiff(cpaper, exact1), 1.0);
-}
-
-// Kernel level, Cayley half steps for a spin about a general axis (the field
-// test only turns about z): L with a symmetric part but mu = 0, so the update is
-// two Cayley rotations by the spin w of W = (L - L^T)/2. Q must be orthogonal;
-// after N steps tau = R(n, N 4 atan(|w| dt / 4)) tau0 R^T (Rodrigues, axis
-// n = w / |w|), and |tau|_F = |tau0|_F; the explicit map's norm grows by
-// (1 + (|w| dt)^2)^N on the part that turns at twice the rate.
-TEST(Objectivity, CayleyKernelGeneralAxis) {
-  const double L[3][3] = {{0.3, -1.1, 0.7}, {0.9, -0.2, -0.4}, {-0.5, 1.3, -0.1}};
-  double W[3][3];
-  for (int p = 0; p < 3; ++p)
-    for (int q = 0; q < 3; ++q) W[p][q] = 0.5 * (L[p][q] - L[q][p]);
-  const double w[3] = {W[2][1], W[0][2], W[1][0]}; // W v = w x v
-  const double wn = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-  const double dt = 0.01;
-  double Q[3][3];
-  elastic::cayleyTransform(W, 0.25 * dt, Q);
-  double orth = 0;
-  for (int p = 0; p < 3; ++p)
-    for (int q = 0; q < 3; ++q) {
-      double v = 0;
-      for (int r = 0; r < 3; ++r) v += Q[p][r] * Q[q][r];
-      orth = std::max(orth, std::abs(v - (p == q ? 1.0 : 0.0)));
-    }
-  test::report("kernel_cayley_Q_orthogonality_error", orth);
-  EXPECT_LT(orth, 1e-15);
-  const int steps = 2000;
-  double c[6], e[6];
-  for (int k = 0; k < 6; ++k) c[k] = e[k] = kTau0[k];
-  for (int s = 0; s < steps; ++s) {
-    elastic::bensonUpdate(c, L, 0.0, dt, 0.5, elastic::Rotation::Cayley);
-    elastic::bensonUpdate(e, L, 0.0, dt, 0.5, elastic::Rotation::Explicit);
-  }
-  // Rodrigues rotation by the discrete angle.
-  const double phi = steps * 4 * std::atan(wn * dt / 4);
-  const double n[3] = {w[0] / wn, w[1] / wn, w[2] / wn};
-  const double K[3][3] = {{0, -n[2], n[1]}, {n[2], 0, -n[0]}, {-n[1], n[0], 0}};
-  double R[3][3], T[3][3], M[3][3];
-  for (int p = 0; p < 3; ++p)
-    for (int q = 0; q < 3; ++q) {
-      double K2 = 0;
-      for (int r = 0; r < 3; ++r) K2 += K[p][r] * K[r][q];
-      R[p][q] = (p == q ? 1.0 : 0.0) + std::sin(phi) * K[p][q] + (1 - std::cos(phi)) * K2;
-    }
-  elastic::unpackSym(kTau0, T);
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      double v = 0;
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q) v += R[a][p] * T[p][q] * R[b][q];
-      M[a][b] = v;
-    }
-  const double closed[6] = {M[0][0], M[1][1], M[2][2], M[0][1], M[1][2], M[2][0]};
-  test::report("kernel_cayley_general_axis_angle_rad", phi);
-  test::report("kernel_cayley_general_axis_error_vs_closed_form", maxDiff(c, closed));
-  test::report("kernel_cayley_general_axis_norm_relative_deviation", frob(c) / frob(kTau0) - 1);
-  test::report("kernel_explicit_general_axis_norm_relative_deviation", frob(e) / frob(kTau0) - 1);
-  EXPECT_LT(maxDiff(c, closed), 1e-11);
-  EXPECT_LT(std::abs(frob(c) / frob(kTau0) - 1), 1e-12);
-  EXPECT_GT(frob(e) / frob(kTau0) - 1, 0.1 * (std::pow(1 + wn * wn * dt * dt / 4, steps) - 1));
 }
