@@ -96,6 +96,18 @@ TEST(ElasticityScene, ModuliAndErrors) {
   e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
                      "elasticity: {rotation: jaumann}\n");
   EXPECT_NE(e.find("rotation"), std::string::npos) << e;
+  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+                     "elasticity: {fluid_side: solid}\n");
+  EXPECT_NE(e.find("fluid_side"), std::string::npos) << e;
+  for (const char* side : {"integrate", "extend", "blend"}) {
+    Simulation sim(test::scene(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+                                      "elasticity: {fluid_side: " + side + "}\n"),
+                   MPI_COMM_WORLD, RunOptions{});
+    sim.initialize();
+    nlohmann::json j;
+    sim.effect("elasticity")->summary(sim.state(), j);
+    EXPECT_EQ(j["elasticity"]["fluid_side"], side);
+  }
   e = errorOf("domain: {cells: [8,8,8]}\neffects: [navier_stokes, elasticity]\noutput: {enabled: false}\n");
   EXPECT_NE(e.find("level_set"), std::string::npos) << e;
 }

@@ -9,6 +9,7 @@
 // band (psi <= -(kappa + band h)) hold tau_S = 0.
 #include "core/boundary.hpp"
 #include "effects/elasticity/elasticity.hpp"
+#include "kernels/extension.hpp"
 #include "kernels/levelset.hpp"
 
 namespace voigt {
@@ -85,6 +86,28 @@ void Elasticity::advect(State& st) {
         });
   }
   refreshStress(st); // the Stress stage reads one ghost layer
+}
+
+// tau_S where psi <= below_ (extend: 0, blend: -kappa) = the stress above it,
+// extended along the normal (kernels/extension.hpp), after the Jaumann update, so that the next
+// transport carries a field that is smooth across psi = 0 (a uniform solid
+// stress stays uniform). Jacobi sweeps between tau_S and the RK buffer (free
+// outside the transport), ghosts refreshed before each.
+void Elasticity::extend(State& st) {
+  const SymTensorField t = solidStressField(st.fields);
+  VecField on = st.fields.vector("solid_stress_old"), os = st.fields.vector("solid_stress_old_shear");
+  SymTensorField b;
+  for (int c = 0; c < 3; ++c) {
+    b.c[c] = on.c[c];
+    b.c[3 + c] = os.c[c];
+  }
+  Field psi = st.fields.scalar("psi");
+  for (int s = 0; s < sweeps_; ++s) {
+    const SymTensorField& from = s % 2 == 0 ? t : b;
+    const SymTensorField& to = s % 2 == 0 ? b : t;
+    refresh(st, from); // collective
+    extension::sweep(st.grid, psi, from, to, owned_, nOwned_, below_);
+  }
 }
 
 } // namespace voigt

@@ -7,7 +7,9 @@
 //   elasticity: {initial_stress: {xx, yy, zz, xy, yz, zx} (Pa, where psi > 0),
 //                band: cells beyond H > 0 where the stress kernels run (default 3),
 //                rotation: cayley | explicit (default cayley): how Eq. (16)'s half
-//                  rotations are applied (kernels/elastic.hpp header)}
+//                  rotations are applied (kernels/elastic.hpp header),
+//                fluid_side: integrate | extend | blend (default integrate): the
+//                  stress of the band's fluid side (elasticity.hpp header)}
 #include "effects/elasticity/elasticity.hpp"
 
 #include <mpi.h>
@@ -52,6 +54,8 @@ void Elasticity::configure(const Scene& s) {
   bandCells_ = sec.number("band", 3, Range::nonNegative());
   rotation_ = sec.choice("rotation", "cayley", {"cayley", "explicit"}) == "explicit" ? elastic::Rotation::Explicit
                                                                                       : elastic::Rotation::Cayley;
+  side_ = sec.choice("fluid_side", "integrate", {"integrate", "extend", "blend"});
+  extend_ = side_ != "integrate";
   const Section is = sec.section("initial_stress");
   const char* keys[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
   for (int c = 0; c < 6; ++c) tau0_[c] = is.number(keys[c], 0);
@@ -74,8 +78,9 @@ void Elasticity::declareFields(FieldStore& f) const {
   f.declare("log10_S2", Centring::Cell, 1, me);
 }
 
-void Elasticity::refreshStress(State& st) const {
-  const SymTensorField t = solidStressField(st.fields);
+void Elasticity::refreshStress(State& st) const { refresh(st, solidStressField(st.fields)); }
+
+void Elasticity::refresh(State& st, const SymTensorField& t) const {
   st.halo->exchange(std::vector<Field>(t.c, t.c + 6));
   for (int c = 0; c < 6; ++c) fillCellGhostsEven(st.grid, t.c[c]);
 }
@@ -86,6 +91,10 @@ void Elasticity::setup(State& st) {
   hmin_ = LevelSetGeometry::hMin(g);
   kappa_ = geo.kappa(g);
   threshold_ = -(kappa_ + bandCells_ * hmin_);
+  below_ = side_ == "blend" ? -kappa_ : 0.0;
+  // Enough sweeps to cross the blend zone's fluid side (kappa) and one cell
+  // more each step; the outer band continues the iteration over steps.
+  sweeps_ = 2 * ((int(std::ceil(kappa_ / hmin_ - 1e-9)) + 2 + 1) / 2);
   owned_ = elastic::IntList("elastic_owned", size_t(g.cellsOwned()));
   prev_ = elastic::IntList("elastic_prev", size_t(g.cellsOwned()));
   grown_ = elastic::IntList("elastic_grown", size_t(cellRange(g, 1).size()));
@@ -110,6 +119,7 @@ void Elasticity::setup(State& st) {
   Kokkos::deep_copy(st.fields.scalar("log10_S2"), floorLog);
   buildLists(st);
   refreshStress(st);
+  if (extend_) extend(st);
   // Time-series columns are fixed by the first row: declare ours now.
   diagnose(st);
   steps_ = 0;
@@ -161,6 +171,7 @@ void Elasticity::summary(const State& st, nlohmann::json& j) const {
                      {"kelvin_voigt_viscosity", etaKV_},
                      {"band_cells", bandCells_},
                      {"rotation", rotation_ == elastic::Rotation::Explicit ? "explicit" : "cayley"},
+                     {"fluid_side", side_},
                      {"steps", steps_},
                      {"stress_cells_mean", mean},
                      {"stress_cell_steps", cellsTotal_},

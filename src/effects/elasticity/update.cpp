@@ -35,8 +35,18 @@ void Elasticity::addStress(State& st) {
 void Elasticity::update(State& st, double spinScale) {
   VecField u = st.fields.vector("velocity");
   st.halo->exchange(u); // the corners of the owned cells
-  elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
-                         rotation_);
+  // fluid_side extend / blend: Eq. (13) only where psi > below_ (0 / -kappa),
+  // then the cells below take the stress extended from above (elasticity.hpp).
+  if (extend_)
+    elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
+                           rotation_, st.fields.scalar("psi"), below_);
+  else
+    elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
+                           rotation_);
+  if (extend_) {
+    extend(st);
+    refreshStress(st);
+  }
 }
 
 void Elasticity::diagnose(State& st) {

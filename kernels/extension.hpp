@@ -1,0 +1,57 @@
+#pragma once
+// Constant extension of a cell field across a level of psi, from psi > below
+// into psi <= below (below = 0: across the interface): the discrete form of n . grad q = 0 on the fluid side, as used for
+// ghost-fluid extrapolation (Aslam 2004, J. Comput. Phys. 193, 349; Peng et al.
+// 1999). One Jacobi sweep sets each listed fluid-side cell to the weighted mean
+// of its 26 neighbours lying further into the solid (psi_nb > psi):
+//   q(c) = sum_nb w q(nb) / sum_nb w,   w = ((psi_nb - psi_c) / |x_nb - x_c|)^2
+// For a signed distance psi, (psi_nb - psi_c)/|d| is the cosine between the
+// neighbour's direction and the normal: neighbours along the normal dominate,
+// tangential ones (cosine ~ 0) drop out. Sweep s reaches the cells s layers
+// out; the values persist between steps, so the iteration continues in time.
+// Cells with psi > below are copied unchanged. Source and destination are
+// distinct fields (Jacobi), so the result is independent of the order and of
+// the rank decomposition; the source needs fresh ghosts.
+#include <Kokkos_Core.hpp>
+
+#include <cmath>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "core/index_space.hpp"
+#include "kernels/stress.hpp"
+
+namespace voigt {
+namespace extension {
+
+inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, const SymTensorField& dst,
+                  const IntList& cell, int n, double below = 0) {
+  if (n == 0) return;
+  const Unpack up{g.ext[0], g.ext[1]};
+  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  const SymTensorField s = src, d = dst;
+  Kokkos::parallel_for(
+      "extension_sweep", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p) {
+        int i, j, k;
+        up(cell(p), i, j, k);
+        const double pc = psi(i, j, k);
+        double acc[6] = {0, 0, 0, 0, 0, 0}, wsum = 0;
+        if (pc <= below) {
+          for (int dk = -1; dk <= 1; ++dk)
+            for (int dj = -1; dj <= 1; ++dj)
+              for (int di = -1; di <= 1; ++di) {
+                const double dp = psi(i + di, j + dj, k + dk) - pc;
+                if (!(dp > 0)) continue;
+                const double x = di * h0, y = dj * h1, z = dk * h2;
+                const double w = dp * dp / (x * x + y * y + z * z);
+                for (int c = 0; c < 6; ++c) acc[c] += w * s.c[c](i + di, j + dj, k + dk);
+                wsum += w;
+              }
+        }
+        // A local maximum of psi on the fluid side (no higher neighbour) keeps its value.
+        for (int c = 0; c < 6; ++c) d.c[c](i, j, k) = wsum > 0 ? acc[c] / wsum : s.c[c](i, j, k);
+      });
+}
+
+} // namespace extension
+} // namespace voigt
