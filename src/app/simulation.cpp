@@ -304,6 +304,8 @@ nlohmann::json Simulation::summary(const RunResult& r) const {
   // Wall seconds inside the Poisson solves (CG + preconditioner apply), for perf/scaling/.
   if (j.contains("poisson") && st_.counters.count("poisson_seconds"))
     j["poisson"]["solve_seconds"] = st_.counters.at("poisson_seconds");
+  if (j.contains("poisson") && st_.counters.count("poisson_setup_seconds"))
+    j["poisson"]["setup_seconds"] = st_.counters.at("poisson_setup_seconds");
   return j;
 }
 

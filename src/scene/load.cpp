@@ -284,6 +284,8 @@ void readSettings(const Section& top, Scene& sc) {
   P.preconditioner = p.choice("preconditioner", P.preconditioner, {"sgs", "jacobi", "none", "multigrid"});
   P.damping = p.number("damping", P.damping, {0, 2, true, true});
   P.sweeps = int(p.integer("sweeps", P.sweeps, 1, 100));
+  P.multigridReuse = p.choice("multigrid_reuse", P.multigridReuse, {"none", "S", "tP", "RP", "RAP"});
+  P.multigridRefresh = int(p.integer("multigrid_refresh", P.multigridRefresh, 0, 1000000));
   p.finish();
 
   Section a = top.section("advection");

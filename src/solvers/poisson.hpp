@@ -18,7 +18,10 @@ struct PoissonStats {
   int iterations = 0;     // 0 when the solve was skipped (rhs at round-off, see solve())
   double relResidual = 0; // explicit ||b - A x|| / ||b|| after null-mode projection (0 when b = 0)
   bool converged = false;
-  double seconds = 0;
+  double seconds = 0;      // this solve
+  // setCoefficients() since the previous solve: matrix fill, null space, preconditioner
+  // (for multigrid the MueLu set-up, which projection.multigrid_reuse makes cheaper).
+  double setupSeconds = 0;
   int nullModes = 0;      // dim null(A) (src/solvers/null_space.hpp)
   // ||P_N b|| / ||b|| of the rhs as given: its part in null(A), which no pressure
   // can remove (NUMERICS.md: compatible only when the prescribed velocities carry
@@ -33,8 +36,10 @@ class PoissonSolver {
   // coef: node vector field, coef_d(n) = 1/rho(n) where velocity component d at
   // node n is free, 0 where it is prescribed. Valid (halo-exchanged) at every
   // corner node of every owned cell. Refills matrix values (graph is fixed),
-  // marks identity rows, recomputes the preconditioner, and finds the null modes
-  // again when the zero pattern of coef changed (null(A) depends on it only).
+  // marks identity rows, recomputes the preconditioner (multigrid: keeping what
+  // projection.multigrid_reuse says, rebuilt in full when the zero pattern changed or
+  // every multigrid_refresh calls), and finds the null modes again when the zero
+  // pattern of coef changed (null(A) depends on it only).
   virtual void setCoefficients(const VecField& coef) = 0;
   // rhs: owned cells (= -D u*/dt). x: initial guess in, solution out (owned
   // cells only are written). Null modes are projected out of rhs and solution;

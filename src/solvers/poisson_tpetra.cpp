@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/index_space.hpp"
@@ -78,6 +79,7 @@ class TpetraPoisson final : public PoissonSolver {
   }
 
   void setCoefficients(const VecField& coef) override {
+    const double t0 = MPI_Wtime();
     A_->resumeFill();
     const bool patternChanged = fillValues(coef);
     A_->fillComplete();
@@ -89,7 +91,11 @@ class TpetraPoisson final : public PoissonSolver {
     if (patternChanged) ns_->rebuild(ident_, applyA, anorm_); // null(A) depends on the pattern only
     if (ifpack_) ifpack_->compute();
     if (cfg_.preconditioner == "multigrid") {
-      if (muelu_.is_null()) {
+      // Reused set-up (projection.multigrid_reuse) was built for the old zero pattern,
+      // whose identity rows and null space it may encode: rebuild when that changes, and
+      // every multigrid_refresh updates.
+      const bool refresh = cfg_.multigridRefresh > 0 && sinceBuild_ + 1 >= cfg_.multigridRefresh;
+      if (muelu_.is_null() || (cfg_.multigridReuse != "none" && (patternChanged || refresh))) {
         Teuchos::ParameterList p;
         p.set("verbosity", "none");
         p.set("coarse: type", "RELAXATION"); // KLU2 fails on the singular operator
@@ -97,12 +103,16 @@ class TpetraPoisson final : public PoissonSolver {
         cp.set("relaxation: type", "Symmetric Gauss-Seidel");
         cp.set("relaxation: sweeps", cfg_.sweeps);
         cp.set("relaxation: damping factor", cfg_.damping);
+        if (cfg_.multigridReuse != "none") p.set("reuse: type", cfg_.multigridReuse);
         muelu_ = MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Operator>(A_), p);
         problem_->setLeftPrec(Teuchos::rcp(new ProjectedPrec(muelu_, ns_.get())));
+        sinceBuild_ = 0;
       } else {
         MueLu::ReuseTpetraPreconditioner(A_, *muelu_);
+        ++sinceBuild_;
       }
     }
+    pendingSetup_ += MPI_Wtime() - t0;
     ready_ = true;
   }
 
@@ -160,6 +170,8 @@ class TpetraPoisson final : public PoissonSolver {
     }
     vecToField(*x_, x, rows_, cells_);
     st.seconds = MPI_Wtime() - t0;
+    st.setupSeconds = pendingSetup_;
+    pendingSetup_ = 0;
     return st;
   }
 
@@ -362,6 +374,14 @@ class TpetraPoisson final : public PoissonSolver {
       throw std::invalid_argument("projection.preconditioner: unknown '" + pc +
                                   "' (sgs | jacobi | none | multigrid)");
     }
+    // MueLu's "full" (and "emin", for the emin algorithm only) are left out: "full" keeps
+    // the fine-level smoother, whose stored inverse diagonal goes stale while A changes
+    // in place; with a moving density jump CG then breaks down at once.
+    const std::string& mr = cfg_.multigridReuse;
+    if (mr != "none" && mr != "S" && mr != "tP" && mr != "RP" && mr != "RAP")
+      throw std::invalid_argument("projection.multigrid_reuse: unknown '" + mr + "' (none | S | tP | RP | RAP)");
+    if (cfg_.multigridRefresh < 0)
+      throw std::invalid_argument("projection.multigrid_refresh: must be >= 0");
   }
 
   GridGeom geom_;
@@ -386,6 +406,8 @@ class TpetraPoisson final : public PoissonSolver {
   Teuchos::RCP<MueLu::TpetraOperator<Scalar, LO, GO, Node>> muelu_;
   Teuchos::RCP<Problem> problem_;
   Teuchos::RCP<Solver> solver_;
+  int sinceBuild_ = 0;        // ReuseTpetraPreconditioner calls since the last full multigrid build
+  double pendingSetup_ = 0;   // setCoefficients() seconds not yet reported by solve()
 };
 
 } // namespace

@@ -68,6 +68,7 @@ void NavierStokes::project(State& st) {
   c["poisson_iterations"] += s.iterations;
   c["poisson_iterations_max"] = std::max(c["poisson_iterations_max"], double(s.iterations));
   c["poisson_seconds"] += s.seconds;
+  c["poisson_setup_seconds"] += s.setupSeconds;
   if (!s.converged) c["poisson_unconverged"] += 1;
   c["poisson_breakdowns"] += s.breakdowns;
   c["poisson_incompatibility_max"] = std::max(c["poisson_incompatibility_max"], s.incompatibility);
