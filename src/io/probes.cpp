@@ -116,7 +116,11 @@ void ProbeSet::sample(double t, const std::vector<OutField>& available, bool for
   for (auto& s : probes_) {
     const Probe& p = s.probe;
     if (!(force || probeDue(p, s.sampled, s.next, t))) continue;
+    // The run's final forced sample lands on the last interval sample when the
+    // end time is a multiple of the interval: one row per time.
+    if (s.sampled && t == s.lastT) continue;
     s.sampled = true;
+    s.lastT = t;
     if (p.interval > 0) s.next = (std::floor(t / p.interval + 1e-9) + 1) * p.interval;
 
     std::vector<const OutField*> fs;

@@ -37,6 +37,7 @@ class ProbeSet {
     bool headerDone = false;
     bool sampled = false;
     double next = 0;          // earliest time of the next interval sample
+    double lastT = 0;         // time of the last row (valid when sampled)
   };
   void writeRows(State& s, double t, const std::vector<const OutField*>& fs,
                  const std::vector<double>& vals);

@@ -268,6 +268,7 @@ TEST(ProbeSet, IntervalForceAndMissingField) {
   {
     ProbeSet probes(g, {p}, tmp.path);
     for (double t : {0.0, 0.05, 0.1, 0.15, 0.2}) probes.sample(t, fields);
+    probes.sample(0.2, fields, true); // forced at the time just sampled: no second row
     probes.sample(0.23, fields, true);
   }
   if (g.rank == 0) {
