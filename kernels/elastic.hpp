@@ -249,12 +249,14 @@ inline Range3 listBox(const Grid& g, const IntList& cell, int n) {
   return box;
 }
 
+constexpr double kAll = -1e300; // jaumannUpdate's `above`: every listed cell, psi not read
+
 // Benson update, Eq. (16), on the listed cells (those with psi > above, when given).
 // u needs the nodes of those cells.
 inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField& tau, double mu, double dt,
                           const IntList& cell, int n, double spinScale = 0.5,
                           Rotation rot = Rotation::Cayley, const Field& psi = Field(),
-                          double above = -1e300) {
+                          double above = kAll) {
   if (n == 0) return;
   GridGeom G(g);
   const Unpack up{g.ext[0], g.ext[1]};
@@ -263,7 +265,7 @@ inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField
       "elastic_jaumann", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p) {
         int i, j, k;
         up(cell(p), i, j, k);
-        if (above > -1e300 && !(psi(i, j, k) > above)) return;
+        if (above > kAll && !(psi(i, j, k) > above)) return;
         double L[3][3];
         cellVelocityGradient(G, u, i, j, k, L);
         double s[6] = {t0(i, j, k), t1(i, j, k), t2(i, j, k), t3(i, j, k), t4(i, j, k), t5(i, j, k)};

@@ -94,13 +94,7 @@ void Elasticity::advect(State& st) {
 // stress stays uniform). Jacobi sweeps between tau_S and the RK buffer (free
 // outside the transport), ghosts refreshed before each.
 void Elasticity::extend(State& st) {
-  const SymTensorField t = solidStressField(st.fields);
-  VecField on = st.fields.vector("solid_stress_old"), os = st.fields.vector("solid_stress_old_shear");
-  SymTensorField b;
-  for (int c = 0; c < 3; ++c) {
-    b.c[c] = on.c[c];
-    b.c[3 + c] = os.c[c];
-  }
+  const SymTensorField t = solidStressField(st.fields), b = symTensorField(st.fields, "solid_stress_old");
   Field psi = st.fields.scalar("psi");
   for (int s = 0; s < sweeps_; ++s) {
     const SymTensorField& from = s % 2 == 0 ? t : b;
@@ -108,6 +102,7 @@ void Elasticity::extend(State& st) {
     refresh(st, from); // collective
     extension::sweep(st.grid, psi, from, to, owned_, nOwned_, below_);
   }
+  refresh(st, t); // sweeps_ is even: the result is in tau_S
 }
 
 } // namespace voigt

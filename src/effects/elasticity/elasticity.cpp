@@ -25,8 +25,10 @@ namespace voigt {
 
 std::unique_ptr<Effect> makeElasticity() { return std::make_unique<Elasticity>(); }
 
-SymTensorField solidStressField(const FieldStore& f) {
-  VecField n = f.vector("solid_stress"), s = f.vector("solid_stress_shear");
+SymTensorField solidStressField(const FieldStore& f) { return symTensorField(f, "solid_stress"); }
+
+SymTensorField symTensorField(const FieldStore& f, const std::string& base) {
+  VecField n = f.vector(base), s = f.vector(base + "_shear");
   SymTensorField t;
   for (int c = 0; c < 3; ++c) {
     t.c[c] = n.c[c];

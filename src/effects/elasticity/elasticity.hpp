@@ -46,6 +46,8 @@ namespace voigt {
 // cell fields, so that `output.fields` can name them: `solid_stress` holds
 // (xx, yy, zz) and `solid_stress_shear` holds (xy, yz, zx).
 SymTensorField solidStressField(const FieldStore& f);
+// The same pairing for any `<base>` / `<base>_shear` pair (the RK buffer solid_stress_old).
+SymTensorField symTensorField(const FieldStore& f, const std::string& base);
 
 class Elasticity : public Effect {
  public:

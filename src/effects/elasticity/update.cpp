@@ -37,16 +37,9 @@ void Elasticity::update(State& st, double spinScale) {
   st.halo->exchange(u); // the corners of the owned cells
   // fluid_side extend / blend: Eq. (13) only where psi > below_ (0 / -kappa),
   // then the cells below take the stress extended from above (elasticity.hpp).
-  if (extend_)
-    elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
-                           rotation_, st.fields.scalar("psi"), below_);
-  else
-    elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
-                           rotation_);
-  if (extend_) {
-    extend(st);
-    refreshStress(st);
-  }
+  elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
+                         rotation_, extend_ ? st.fields.scalar("psi") : Field(), extend_ ? below_ : elastic::kAll);
+  if (extend_) extend(st);
 }
 
 void Elasticity::diagnose(State& st) {
