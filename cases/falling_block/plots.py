@@ -7,7 +7,10 @@ axis, bending of the mid-surface, and the gaps to the cylinder and the base; con
     cases/falling_block/plots.py -o diagnostics.png --run output/fb_1000 "mu_S = 1000 Pa" \\
         --run output/fb_5000 "mu_S = 5000 Pa" [--title TEXT]
 
-Also prints a table (markdown) of the contact times, and tilt and bending at the paper's times.
+Also prints two markdown tables: the contact times with tilt and bending at the paper's times,
+and the block's state at STATE_TIMES (centroid, tilt, bending, gaps in cells, energy ratio,
+volume change). Energy ratio = (kinetic energy of block and air + elastic energy) / potential
+energy the block has released since t = 0; without an energy source it stays <= 1.
 """
 import argparse
 import csv
@@ -19,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
+STATE_TIMES = (0.04, 0.06, 0.08, 0.10, 0.12, 0.16, 0.20, 0.24, 0.30, 0.36, 0.42, 0.50)
 
 
 def load(d):
@@ -50,7 +54,7 @@ def main():
     a = ap.parse_args()
     fig, ax = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     ax = ax.ravel()
-    rows = []
+    rows, states = [], []
     for n, (d, label) in enumerate(a.run):
         cols, summ = load(d)
         c = "C%d" % n
@@ -72,6 +76,7 @@ def main():
                      [at(cols, "solid_tilt_deg", tt) for tt in PAPER_TIMES],
                      [at(cols, "solid_bending", tt) for tt in PAPER_TIMES]))
         h = sb.get("contact_gap")
+        states.append((label, state_rows(cols, h / sb.get("contact_gap_cells", 1.0) if h else None)))
     if h:
         ax[3].axhline(1000 * h, color="k", lw=0.8, ls=":", label="contact gap (1 cell)")
     ax[0].set_ylabel("centroid height (mm)")
@@ -97,6 +102,29 @@ def main():
         print("| %s | %s | %s | %s | %s | %s |" % (
             label, fmt(f1), fmt(f2), fmt(fb), " | ".join(fmt(v, "%.1f") for v in tilts),
             " | ".join(fmt(None if v is None else 1000 * v, "%.2f") for v in bends)))
+    print()
+    print("| run | t (s) | centroid y (mm) | centroid x (mm) | tilt (deg) | bending (mm) | gap cylinder (h) "
+          "| gap base (h) | energy ratio | volume change (%) |")
+    print("|---" * 10 + "|")
+    for label, srows in states:
+        for r in srows:
+            print("| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f |" % ((label,) + r))
+
+
+def state_rows(cols, h):
+    """The block's state at STATE_TIMES (those the run reached); gaps in cells of size h."""
+    pe0 = cols["solid_potential_energy"][0]
+    out = []
+    for tt in STATE_TIMES:
+        g = lambda k: at(cols, k, tt)  # noqa: E731
+        if g("t") is None or abs(g("t") - tt) > 0.005:
+            continue
+        released = pe0 - g("solid_potential_energy")
+        ratio = (g("kinetic_energy") + g("elastic_energy")) / released if released > 0 else float("nan")
+        out.append((tt, 1000 * g("solid_cy"), 1000 * g("solid_cx"), g("solid_tilt_deg"), 1000 * g("solid_bending"),
+                    g("solid_gap_obstacle0") / h if h else float("nan"), g("solid_gap_y-") / h if h else float("nan"),
+                    ratio, 100 * g("volume_drift")))
+    return out
 
 
 if __name__ == "__main__":
