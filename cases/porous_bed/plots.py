@@ -9,7 +9,9 @@ Writes DIR/pressure_midline.png (Fig. 4), gradient_midline.png (Fig. 5), gradien
 (Fig. 6: mean -dp/dy over y = 0.10-0.25 m, linear fit, slope, intercept, R^2), pressure_slice.png
 (Fig. 7: mid-plane z, lowest and highest mu_S), deformation.png (Fig. 8: psi = 0 in the mid-plane
 at the first, middle and last output, and the bed centroid's rise against time), and prints a
-markdown table. The midline is the probe `midline` (probe_midline.csv) at its last time.
+markdown table. The midline is the probe `midline` (probe_midline.csv) at its last time, or with
+--time T the pressure field of the output nearest T (mean of the four cell columns around
+x = z = 5.5 cm; cell centres), so runs can be compared at an earlier common time.
 """
 import argparse
 import csv
@@ -33,7 +35,14 @@ def ergun(e):
     return (1 - e) / e ** 3 * RHO * U ** 2 / D * (150 * (1 - e) * MU / (D * U * RHO) + 1.75)
 
 
-def midline(d):
+def midline(d, at=None):
+    if at is not None:
+        t, path, sp = min(frames(d), key=lambda f: abs(f[0] - at))
+        with h5py.File(path, "r") as f:
+            p = f["pressure"][...]                 # (z, y, x), cell centres
+        nz, ny, nx = p.shape
+        col = p[nz // 2 - 1:nz // 2 + 1, :, nx // 2 - 1:nx // 2 + 1].mean(axis=(0, 2))
+        return t, (np.arange(ny) + 0.5) * sp[1], col
     rows = {}
     with open(os.path.join(d, "probe_midline.csv")) as f:
         for r in csv.DictReader(f):
@@ -69,6 +78,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "MU_S"), required=True)
     ap.add_argument("--title", default="")
+    ap.add_argument("--time", type=float, help="midline from the field output nearest this time")
     ap.add_argument("-o", "--outdir", required=True)
     a = ap.parse_args()
     runs = sorted(((float(m), d) for d, m in a.run))
@@ -79,7 +89,7 @@ def main():
     f5, ax5 = plt.subplots(figsize=(6, 4.5))
     mus, grads, rows = [], [], []
     for n, (mu, d) in enumerate(runs):
-        t, y, p = midline(d)
+        t, y, p = midline(d, a.time)
         gr = -np.gradient(p, y)
         sel = (y >= Y0) & (y <= Y1)
         mean = float(np.mean(gr[sel]))
@@ -90,7 +100,8 @@ def main():
         tt, cy = timeseries(d)
         mus.append(mu)
         grads.append(mean)
-        rows.append((mu, t, mean, mean - RHO * G, 1000 * (cy[-1] - cy[0])))
+        k = int(np.argmin(np.abs(tt - t)))      # centroid rise at the midline's time
+        rows.append((mu, t, mean, mean - RHO * G, 1000 * (cy[k] - cy[0])))
     for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),
                              (ax5, f5, "-dp/dy (Pa/m); dashed: mean over 0.10-0.25 m", "gradient_midline.png")):
         ax.set_xlabel("y (m), midline x = z = 5.5 cm")
