@@ -142,7 +142,7 @@ def main():
     f7, ax7 = plt.subplots(1, len(ends), figsize=(3.8 * len(ends) + 1, 6), squeeze=False)
     f8, ax8 = plt.subplots(1, len(ends) + 1, figsize=(3.2 * len(ends) + 4, 6), squeeze=False)
     for n, (mu, d) in enumerate(ends):
-        fr = frames(d)
+        fr = [f for f in frames(d) if a.time is None or f[0] <= a.time + 1e-9]   # up to --time
         t, path, sp = fr[-1]
         p, psi = slice_mid(path, "pressure"), slice_mid(path, "psi")
         ext = [0, sp[0] * p.shape[1], 0, sp[1] * p.shape[0]]
