@@ -23,6 +23,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
 STATE_TIMES = (0.04, 0.06, 0.08, 0.10, 0.12, 0.16, 0.20, 0.24, 0.30, 0.36, 0.42, 0.50)
+STATE_KEYS = ("solid_potential_energy", "kinetic_energy", "elastic_energy", "solid_cy", "solid_cx", "solid_tilt_deg",
+              "solid_bending", "solid_gap_obstacle0", "solid_gap_y-", "volume_drift")
 
 
 def load(d):
@@ -113,19 +115,19 @@ def main():
 
 def state_rows(cols, h):
     """The block's state at STATE_TIMES (those the run reached); gaps in cells of size h."""
-    pe0 = cols["solid_potential_energy"][0]
+    ts, pe0, nan = cols["t"], cols["solid_potential_energy"][0], float("nan")
     out = []
     for tt in STATE_TIMES:
-        g = lambda k: at(cols, k, tt)  # noqa: E731
-        if g("t") is None or abs(g("t") - tt) > 0.005:
+        i = min(range(len(ts)), key=lambda q: abs(ts[q] - tt))   # one search per time
+        if abs(ts[i] - tt) > 0.005:
             continue
-        released = pe0 - g("solid_potential_energy")
-        ratio = (g("kinetic_energy") + g("elastic_energy")) / released if released > 0 else float("nan")
-        out.append((tt, 1000 * g("solid_cy"), 1000 * g("solid_cx"), g("solid_tilt_deg"), 1000 * g("solid_bending"),
-                    g("solid_gap_obstacle0") / h if h else float("nan"), g("solid_gap_y-") / h if h else float("nan"),
-                    ratio, 100 * g("volume_drift")))
+        g = {k: cols[k][i] for k in STATE_KEYS}
+        released = pe0 - g["solid_potential_energy"]
+        ratio = (g["kinetic_energy"] + g["elastic_energy"]) / released if released > 0 else nan
+        out.append((tt, 1000 * g["solid_cy"], 1000 * g["solid_cx"], g["solid_tilt_deg"], 1000 * g["solid_bending"],
+                    g["solid_gap_obstacle0"] / h if h else nan, g["solid_gap_y-"] / h if h else nan,
+                    ratio, 100 * g["volume_drift"]))
     return out
-
 
 if __name__ == "__main__":
     main()

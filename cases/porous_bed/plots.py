@@ -10,8 +10,9 @@ Writes DIR/pressure_midline.png (Fig. 4), gradient_midline.png (Fig. 5), gradien
 (Fig. 7: mid-plane z, lowest and highest mu_S), deformation.png (Fig. 8: psi = 0 in the mid-plane
 at the first, middle and last output, and the bed centroid's rise against time), and prints a
 markdown table. The midline is the probe `midline` (probe_midline.csv) at its last time, or with
---time T the pressure field of the output nearest T (mean of the four cell columns around
-x = z = 5.5 cm; cell centres), so runs can be compared at an earlier common time.
+--time T the pressure field of the last output at or before T (mean of the four cell columns
+around x = z = 5.5 cm; cell centres), so runs can be compared at an earlier common time; Figs. 7-8
+then stop at that output too.
 """
 import argparse
 import csv
@@ -37,7 +38,7 @@ def ergun(e):
 
 def midline(d, at=None):
     if at is not None:
-        t, path, sp = min(frames(d), key=lambda f: abs(f[0] - at))
+        t, path, sp = frames(d, at)[-1]
         with h5py.File(path, "r") as f:
             p = f["pressure"][...]                 # (z, y, x), cell centres
         nz, ny, nx = p.shape
@@ -52,13 +53,15 @@ def midline(d, at=None):
     return t, y, p
 
 
-def frames(d):
+def frames(d, upto=None):
+    """(time, h5 path, spacing xyz) of every output, or of those at or before `upto`."""
     x = open(os.path.join(d, "fields.xdmf")).read()
     out = []
     for g in re.finditer(r'<Grid Name="(fields_\d+\.h5)" GridType="Uniform">(.*?)</Grid>', x, re.S):
         t = float(re.search(r'<Time Value="([^"]+)"', g.group(2)).group(1))
         sp = [float(v) for v in re.search(r'Name="Spacing"[^>]*>([^<]+)<', g.group(2)).group(1).split()][::-1]
-        out.append((t, os.path.join(d, g.group(1)), sp))
+        if upto is None or t <= upto + 1e-9:
+            out.append((t, os.path.join(d, g.group(1)), sp))
     return out
 
 
@@ -78,7 +81,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "MU_S"), required=True)
     ap.add_argument("--title", default="")
-    ap.add_argument("--time", type=float, help="midline from the field output nearest this time")
+    ap.add_argument("--time", type=float, help="midline from the last field output at or before this time")
     ap.add_argument("-o", "--outdir", required=True)
     a = ap.parse_args()
     runs = sorted(((float(m), d) for d, m in a.run))
@@ -142,7 +145,7 @@ def main():
     f7, ax7 = plt.subplots(1, len(ends), figsize=(3.8 * len(ends) + 1, 6), squeeze=False)
     f8, ax8 = plt.subplots(1, len(ends) + 1, figsize=(3.2 * len(ends) + 4, 6), squeeze=False)
     for n, (mu, d) in enumerate(ends):
-        fr = [f for f in frames(d) if a.time is None or f[0] <= a.time + 1e-9]   # up to --time
+        fr = frames(d, a.time)
         t, path, sp = fr[-1]
         p, psi = slice_mid(path, "pressure"), slice_mid(path, "psi")
         ext = [0, sp[0] * p.shape[1], 0, sp[1] * p.shape[0]]
