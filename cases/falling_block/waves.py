@@ -1,0 +1,155 @@
+#!/usr/bin/python3
+"""The stress wave of the impact: S2 along the probe line `impact` (x through the block's middle,
+falling_block.yaml) against time, one panel per run, and the speed of its front against the
+shear-wave speed c_s = sqrt(mu_S / rho_S) (summary.json). Python 3 + numpy + matplotlib.
+
+    cases/falling_block/waves.py -o waves.png --run output/fb_5000 "mu_S = 5000 Pa" [--run ...]
+        [--window 0.04 0.10] [--level 0.1] [--source 0.045] [--title TEXT]
+
+Impact time t_i: the block's mean vertical velocity (timeseries.csv, solid_vy) stops falling,
+i.e. first rises 1 % of its size above its running minimum. Arrival at x: the first time after
+t_i - 2 ms at which S2 there exceeds LEVEL times the largest S2 on the line in the window,
+counting only samples more than a cell inside the block (psi > h: the band's air side carries
+stress from the air flow, README).
+The source x_0 is the cylinder's axis (--source, default the scene's 4.5 cm); the front speed on each side is 1 / slope of a
+Theil-Sen line (median pairwise slope) of arrival time against |x - x_0| over 2 h <= |x - x_0| <= 2.5 cm.
+Prints a markdown table (speeds, their ratio to c_s, the fit's R^2).
+"""
+import argparse
+import csv
+import json
+import os
+import re
+
+import numpy as np
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def probe(d):
+    """t (nt), x (nx), the line's height y, psi and S2 (nt, nx) from DIR/probe_impact.csv."""
+    rows = {}
+    with open(os.path.join(d, "probe_impact.csv")) as f:
+        for r in csv.DictReader(f):
+            rows.setdefault(float(r["t"]), []).append((float(r["x"]), float(r["psi"]), float(r["S2"])))
+            y = float(r["y"])
+    ts = sorted(rows)
+    x = np.array([p[0] for p in rows[ts[0]]])
+    psi = np.array([[p[1] for p in rows[t]] for t in ts])
+    s2 = np.array([[p[2] for p in rows[t]] for t in ts])
+    return np.array(ts), x, y, psi, s2
+
+
+def cell_size(d):
+    """h along x from the first grid of DIR/fields.xdmf (the Spacing item lists z y x)."""
+    x = open(os.path.join(d, "fields.xdmf")).read()
+    return float(re.search(r'Name="Spacing"[^>]*>([^<]+)<', x).group(1).split()[-1])
+
+
+def impact_time(d):
+    t, vy = [], []
+    with open(os.path.join(d, "timeseries.csv")) as f:
+        for r in csv.DictReader(f):
+            t.append(float(r["t"]))
+            vy.append(float(r["solid_vy"]))
+    low = 0.0
+    for ti, v in zip(t, vy):
+        low = min(low, v)
+        if low < 0 and v > low + 0.01 * abs(low):
+            return ti
+    return None
+
+
+def front(t, x, psi, s2, t0, t1, level, h, x0):
+    """Arrival time per x (nan where none) and the fit on each side."""
+    win = (t >= t0) & (t <= t1)
+    inside = np.where(psi > h, s2, np.nan)[win]
+    tw = t[win]
+    arrive = np.full(len(x), np.nan)
+    if np.all(np.isnan(inside)):
+        return arrive, []
+    peak = np.nanmax(inside)
+    for q in range(len(x)):
+        hit = np.where(inside[:, q] >= level * peak)[0]
+        if len(hit):
+            arrive[q] = tw[hit[0]]
+    if np.all(np.isnan(arrive)):
+        return arrive, []
+    fits = []
+    for side, sel in (("-x", x < x0), ("+x", x > x0)):
+        dist = np.abs(x - x0)
+        m = sel & ~np.isnan(arrive) & (dist >= 2 * h) & (dist <= 0.025)
+        if m.sum() < 4:
+            fits.append((side, None, None, int(m.sum())))
+            continue
+        # Theil-Sen (median of the pairwise slopes): a few late arrivals, where S2 grows
+        # slowly over the cylinder's line, do not pull it; R^2 of that line for how well it fits.
+        dd, tt = dist[m], arrive[m]
+        i, j = np.triu_indices(len(dd), 1)
+        ok = dd[j] != dd[i]
+        slope = np.median((tt[j] - tt[i])[ok] / (dd[j] - dd[i])[ok])
+        icpt = np.median(tt - slope * dd)
+        r2 = 1 - np.sum((tt - slope * dd - icpt) ** 2) / max(np.sum((tt - tt.mean()) ** 2), 1e-300)
+        fits.append((side, 1 / slope if slope > 0 else None, r2, int(m.sum())))
+    return arrive, fits
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "LABEL"), required=True)
+    ap.add_argument("--window", nargs=2, type=float, default=(0.04, 0.10), metavar=("T0", "T1"))
+    ap.add_argument("--level", type=float, default=0.1)
+    ap.add_argument("--source", type=float, default=0.045, help="x of the cylinder's axis (m)")
+    ap.add_argument("--title", default="")
+    ap.add_argument("-o", "--output", required=True)
+    a = ap.parse_args()
+    missing = [d for d, _ in a.run if not os.path.exists(os.path.join(d, "probe_impact.csv"))]
+    for d in missing:
+        print("waves.py: %s has no probe_impact.csv (run before the probe was in the scene): skipped" % d)
+    a.run = [r for r in a.run if r[0] not in missing]
+    if not a.run:
+        return
+    fig, axes = plt.subplots(1, len(a.run), figsize=(4.2 * len(a.run) + 1, 4.6), squeeze=False)
+    print("| run | impact t_i (s) | source x_0 (cm) | side | front speed (m/s) | c_s (m/s) | speed / c_s | R^2 | points |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for ax, (d, label) in zip(axes[0], a.run):
+        s = json.load(open(os.path.join(d, "summary.json")))
+        cs = s["elasticity"]["wave_speed"]
+        t, x, y, psi, s2 = probe(d)
+        h = cell_size(d)
+        ti = impact_time(d)
+        t0 = max(a.window[0], (ti - 0.002) if ti else a.window[0])
+        x0 = a.source
+        arrive, fits = front(t, x, psi, s2, t0, a.window[1], a.level, h, x0)
+        win = (t >= a.window[0]) & (t <= a.window[1])
+        img = np.where(psi[win] > 0, np.log10(np.maximum(s2[win], 1e-3)), np.nan)
+        m = ax.pcolormesh(x * 100, t[win] * 1000, img, shading="nearest", cmap="viridis")
+        fig.colorbar(m, ax=ax, label="log10 S2 (Pa^2), inside the block")
+        ax.plot(x * 100, arrive * 1000, "w.", ms=3, label="arrival (S2 > %g of its peak)" % a.level)
+        if not np.all(np.isnan(arrive)):
+            tx0 = np.nanmin(arrive)
+            for sgn in (-1, 1):
+                dx = np.linspace(0, 0.03, 10)
+                ax.plot((x0 + sgn * dx) * 100, (tx0 + dx / cs) * 1000, "r--", lw=1)
+            ax.plot([], [], "r--", lw=1, label="c_s = %.2f m/s from x_0" % cs)
+        if ti:
+            ax.axhline(ti * 1000, color="w", lw=0.8, ls=":")
+        ax.set_xlabel("x (cm), at y = %.1f cm" % (y * 100))
+        ax.set_ylabel("t (ms)")
+        ax.set_title(label, fontsize=10)
+        ax.legend(fontsize=7, loc="upper left")
+        for side, v, r2, npts in fits:
+            print("| %s | %s | %s | %s | %s | %.2f | %s | %s | %d |" % (
+                label, "%.4f" % ti if ti else "-", "%.2f" % (x0 * 100), side,
+                "%.2f" % v if v else "-", cs, "%.2f" % (v / cs) if v else "-", "%.3f" % r2 if r2 is not None else "-",
+                npts))
+    if a.title:
+        fig.suptitle(a.title)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=130)
+    print("\nwrote %s" % a.output)
+
+
+if __name__ == "__main__":
+    main()
