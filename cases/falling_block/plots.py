@@ -7,9 +7,9 @@ axis, bending of the mid-surface, and the gaps to the cylinder and the base; con
     cases/falling_block/plots.py -o diagnostics.png --run output/fb_1000 "mu_S = 1000 Pa" \\
         --run output/fb_5000 "mu_S = 5000 Pa" [--title TEXT]
 
-Also prints two markdown tables: the contact times with tilt and bending at the paper's times,
-and the block's state at STATE_TIMES (centroid, tilt, bending, gaps in cells, energy ratio,
-volume change). Energy ratio = (kinetic energy of block and air + elastic energy) / potential
+Also prints three markdown tables: the contact times with tilt and bending at the paper's times,
+the block's state at STATE_TIMES (centroid, tilt, bending, gaps in cells, energy ratio, volume
+change), and the impact and what follows by one rule for every run (events()). Energy ratio = (kinetic energy of block and air + elastic energy) / potential
 energy the block has released since t = 0; without an energy source it stays <= 1.
 """
 import argparse
@@ -56,7 +56,7 @@ def main():
     a = ap.parse_args()
     fig, ax = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     ax = ax.ravel()
-    rows, states = [], []
+    rows, states, evs = [], [], []
     for n, (d, label) in enumerate(a.run):
         cols, summ = load(d)
         c = "C%d" % n
@@ -78,7 +78,10 @@ def main():
                      [at(cols, "solid_tilt_deg", tt) for tt in PAPER_TIMES],
                      [at(cols, "solid_bending", tt) for tt in PAPER_TIMES]))
         h = sb.get("contact_gap")
-        states.append((label, state_rows(cols, h / sb.get("contact_gap_cells", 1.0) if h else None)))
+        cell = h / sb.get("contact_gap_cells", 1.0) if h else None
+        states.append((label, state_rows(cols, cell)))
+        if cell:
+            evs.append((label, events(cols, cell)))
     if h:
         ax[3].axhline(1000 * h, color="k", lw=0.8, ls=":", label="contact gap (1 cell)")
     ax[0].set_ylabel("centroid height (mm)")
@@ -111,6 +114,12 @@ def main():
     for label, srows in states:
         for r in srows:
             print("| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f |" % ((label,) + r))
+    if evs:
+        print()
+        print("| event | " + " | ".join(label for label, _ in evs) + " |")
+        print("|---" * (1 + len(evs)) + "|")
+        for q, (name, _) in enumerate(evs[0][1]):
+            print("| %s | " % name + " | ".join(e[q][1] for _, e in evs) + " |")
 
 
 def state_rows(cols, h):
@@ -128,6 +137,53 @@ def state_rows(cols, h):
                     g["solid_gap_obstacle0"] / h if h else nan, g["solid_gap_y-"] / h if h else nan,
                     ratio, 100 * g["volume_drift"]))
     return out
+
+def first(ts, vals, test, t0=0.0):
+    """(t, value) of the first sample at t >= t0 that passes test, or None."""
+    for t, v in zip(ts, vals):
+        if t >= t0 and test(v):
+            return t, v
+    return None
+
+
+def extreme(ts, vals, t0, t1, pick=max):
+    """(t, value) of the largest (pick=max) or smallest value in [t0, t1], or None."""
+    s = [(v, t) for t, v in zip(ts, vals) if t0 <= t <= t1]
+    return None if not s else tuple(reversed(pick(s)))
+
+
+def events(cols, h):
+    """The impact and what follows, by one rule for every run (gaps in cells of size h)."""
+    ts, vy = cols["t"], cols["solid_vy"]
+    low, slow = 0.0, None
+    for t, v in zip(ts, vy):   # the block's mean vy stops falling: it rises 1 % above its running minimum
+        low = min(low, v)
+        if low < 0 and v > low + 0.01 * abs(low):
+            slow = (t, low)
+            break
+    t_s = slow[0] if slow else ts[0]
+    lowest = extreme(ts, cols["solid_cy"], t_s, t_s + 0.05, min)
+    rebound = extreme(ts, cols["solid_cy"], lowest[0], lowest[0] + 0.08) if lowest else None
+    bend = extreme(ts, cols["solid_bending"], t_s, t_s + 0.04)
+    gap = [g / h for g in cols["solid_gap_obstacle0"]]
+    closest = extreme(ts, gap, t_s, t_s + 0.05, min)
+    base = first(ts, [g / h for g in cols["solid_gap_y-"]], lambda g: g < 2)
+    pe0 = cols["solid_potential_energy"][0]
+    ratio = [(k + e) / (pe0 - p) if pe0 - p > 0 else 0.0
+             for k, e, p in zip(cols["kinetic_energy"], cols["elastic_energy"], cols["solid_potential_energy"])]
+    return [
+        ("mean vy stops falling (s; vy m/s)", "-" if not slow else "%.4f (%.3f)" % slow),
+        ("smallest gap to the cylinder in the impact (h, at s)", "-" if not closest else "%.2f at %.4f" % closest[::-1]),
+        ("lowest centroid (mm, at s)", "-" if not lowest else "%.1f at %.4f" % (1000 * lowest[1], lowest[0])),
+        ("rebound (mm, to s)", "-" if not rebound else "%.1f to %.4f" % (1000 * (rebound[1] - lowest[1]), rebound[0])),
+        ("peak bending on impact (mm, at s)", "-" if not bend else "%.2f at %.4f" % (1000 * bend[1], bend[0])),
+        ("slowing to peak bending (ms)", "-" if not (bend and slow) else "%.1f" % (1000 * (bend[0] - slow[0]))),
+        ("base: gap < 2 h from (s)", "-" if not base else "%.4f" % base[0]),
+        ("peak tilt (deg, at s)", "%.1f at %.3f" % extreme(ts, cols["solid_tilt_deg"], 0, ts[-1])[::-1]),
+        ("largest energy ratio (at s)", "%.2f at %.3f" % extreme(ts, ratio, 0.03, ts[-1])[::-1]),
+        ("energy ratio, volume change at the end (t s)", "%.2f, %.1f %% (%.3f)" % (ratio[-1], 100 * cols["volume_drift"][-1], ts[-1])),
+    ]
+
 
 if __name__ == "__main__":
     main()
