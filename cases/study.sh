@@ -32,7 +32,7 @@ study_parse() {
     esac
     shift
   done
-  case "$ranks" in ''|*[!0-9]*|0) echo "run: --ranks must be a positive integer, not '$ranks'" >&2; exit 2 ;; esac
+  case "$ranks" in ''|*[!0-9]*|0*) echo "run: --ranks must be a positive integer, not '$ranks'" >&2; exit 2 ;; esac
 }
 
 # One command on a fresh machine: packages (and the figure packages), then the build.

@@ -152,6 +152,12 @@ def extreme(ts, vals, t0, t1, pick=max):
     return None if not s else tuple(reversed(pick(s)))
 
 
+EVENT_NAMES = ("mean vy stops falling (s; vy m/s)", "smallest gap to the cylinder in the impact (h, at s)",
+               "lowest centroid (mm, at s)", "rebound (mm, to s)", "peak bending on impact (mm, at s)",
+               "slowing to peak bending (ms)", "base: gap < 2 h from (s)", "peak tilt (deg, at s)",
+               "largest energy ratio (at s)", "energy ratio, volume change at the end (t s)")
+
+
 def events(cols, h):
     """The impact and what follows, by one rule for every run (gaps in cells of size h)."""
     ts, vy = cols["t"], cols["solid_vy"]
@@ -161,7 +167,9 @@ def events(cols, h):
         if low < 0 and v > low + 0.01 * abs(low):
             slow = (t, low)
             break
-    t_s = slow[0] if slow else ts[0]
+    if not slow:   # no impact: nothing below is defined
+        return [(name, "-") for name in EVENT_NAMES]
+    t_s = slow[0]
     lowest = extreme(ts, cols["solid_cy"], t_s, t_s + 0.05, min)
     rebound = extreme(ts, cols["solid_cy"], lowest[0], lowest[0] + 0.08) if lowest else None
     bend = extreme(ts, cols["solid_bending"], t_s, t_s + 0.04)
@@ -171,18 +179,20 @@ def events(cols, h):
     pe0 = cols["solid_potential_energy"][0]
     ratio = [(k + e) / (pe0 - p) if pe0 - p > 0 else 0.0
              for k, e, p in zip(cols["kinetic_energy"], cols["elastic_energy"], cols["solid_potential_energy"])]
-    return [
-        ("mean vy stops falling (s; vy m/s)", "-" if not slow else "%.4f (%.3f)" % slow),
+    rows = [
+        ("mean vy stops falling (s; vy m/s)", "%.4f (%.3f)" % slow),
         ("smallest gap to the cylinder in the impact (h, at s)", "-" if not closest else "%.2f at %.4f" % closest[::-1]),
         ("lowest centroid (mm, at s)", "-" if not lowest else "%.1f at %.4f" % (1000 * lowest[1], lowest[0])),
         ("rebound (mm, to s)", "-" if not rebound else "%.1f to %.4f" % (1000 * (rebound[1] - lowest[1]), rebound[0])),
         ("peak bending on impact (mm, at s)", "-" if not bend else "%.2f at %.4f" % (1000 * bend[1], bend[0])),
-        ("slowing to peak bending (ms)", "-" if not (bend and slow) else "%.1f" % (1000 * (bend[0] - slow[0]))),
+        ("slowing to peak bending (ms)", "-" if not bend else "%.1f" % (1000 * (bend[0] - slow[0]))),
         ("base: gap < 2 h from (s)", "-" if not base else "%.4f" % base[0]),
-        ("peak tilt (deg, at s)", "%.1f at %.3f" % extreme(ts, cols["solid_tilt_deg"], 0, ts[-1])[::-1]),
+        ("peak tilt (deg, at s)", "%.1f at %.3f" % extreme(ts, [abs(v) for v in cols["solid_tilt_deg"]], 0, ts[-1])[::-1]),
         ("largest energy ratio (at s)", "%.2f at %.3f" % extreme(ts, ratio, 0.03, ts[-1])[::-1]),
         ("energy ratio, volume change at the end (t s)", "%.2f, %.1f %% (%.3f)" % (ratio[-1], 100 * cols["volume_drift"][-1], ts[-1])),
     ]
+    assert tuple(r[0] for r in rows) == EVENT_NAMES
+    return rows
 
 
 if __name__ == "__main__":
