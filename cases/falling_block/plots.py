@@ -146,6 +146,17 @@ def first(ts, vals, test, t0=0.0):
     return None
 
 
+def slowing(ts, vy):
+    """(t, vy) when the block's mean vy stops falling: it first rises 1 % of its size above its
+    running minimum; None if it never does. The impact time of plots.py and waves.py."""
+    low = 0.0
+    for t, v in zip(ts, vy):
+        low = min(low, v)
+        if low < 0 and v > low + 0.01 * abs(low):
+            return t, low
+    return None
+
+
 def extreme(ts, vals, t0, t1, pick=max):
     """(t, value) of the largest (pick=max) or smallest value in [t0, t1], or None."""
     s = [(v, t) for t, v in zip(ts, vals) if t0 <= t <= t1]
@@ -160,13 +171,8 @@ EVENT_NAMES = ("mean vy stops falling (s; vy m/s)", "smallest gap to the cylinde
 
 def events(cols, h):
     """The impact and what follows, by one rule for every run (gaps in cells of size h)."""
-    ts, vy = cols["t"], cols["solid_vy"]
-    low, slow = 0.0, None
-    for t, v in zip(ts, vy):   # the block's mean vy stops falling: it rises 1 % above its running minimum
-        low = min(low, v)
-        if low < 0 and v > low + 0.01 * abs(low):
-            slow = (t, low)
-            break
+    ts = cols["t"]
+    slow = slowing(ts, cols["solid_vy"])
     if not slow:   # no impact: nothing below is defined
         return [(name, "-") for name in EVENT_NAMES]
     t_s = slow[0]

@@ -31,6 +31,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from plots import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
+
 
 def probe(d):
     """t (nt), x (nx), the line's height y, psi and S2 (nt, nx) from DIR/probe_impact.csv."""
@@ -60,12 +62,8 @@ def impact_time(d):
         for r in csv.DictReader(f):
             t.append(float(r["t"]))
             vy.append(float(r["solid_vy"]))
-    low = 0.0
-    for ti, v in zip(t, vy):
-        low = min(low, v)
-        if low < 0 and v > low + 0.01 * abs(low):
-            return ti
-    return None
+    hit = slowing(t, vy)
+    return hit[0] if hit else None
 
 
 def front(t, x, y, psi, s2, t0, t1, level, h, src):
