@@ -25,6 +25,7 @@ Scene loadSceneFromString(const std::string& yaml, const std::string& name, cons
 
 // "a.b.c=value": list entries by index (obstacles.0.radius=0.1); value parsed as
 // YAML ([1,2,3] works); missing map keys are created. Malformed -> SceneError naming the --set.
-void applyOverride(YAML::Node& root, const std::string& assignment);
+// Returns the canonical path it set, e.g. obstacles[0].radius.
+std::string applyOverride(YAML::Node& root, const std::string& assignment);
 
 } // namespace voigt
