@@ -18,6 +18,7 @@
 #include "kernels/projection_ops.hpp"
 #include "solvers/null_space.hpp"
 #include "solvers/operators.hpp"
+#include "solvers/poisson_assembly.hpp"
 #include "solvers/poisson.hpp"
 #include "solvers/trilinos_types.hpp"
 
@@ -25,10 +26,7 @@ namespace voigt {
 namespace {
 
 using namespace tpetra;
-constexpr int kStencil = 27; // slot table width: offset o = (di+1) + 3 (dj+1) + 9 (dk+1)
-constexpr int kCentre = 13;
 constexpr double kRoundoff = 1e-14; // rhs below this times ||A|| ||x0||: nothing to solve
-using SlotView = Kokkos::View<int**, Kokkos::LayoutRight, MemSpace>;
 
 RowVector devView(Vector& v) {
   return Kokkos::subview(v.getLocalViewDevice(Tpetra::Access::ReadWrite), Kokkos::ALL(), 0);
@@ -248,81 +246,13 @@ class TpetraPoisson final : public PoissonSolver {
     Kokkos::deep_copy(slot_, hs);
   }
 
-  // Values from coef; sets anorm_ = ||A||_inf and returns whether the zero pattern
-  // (which of the 8 x 3 corner coefficients of each row vanish) changed, globally.
+  // Values from coef (assemblePoisson); sets anorm_ = ||A||_inf and returns whether the
+  // zero pattern changed, globally.
   bool fillValues(const VecField& coef) {
     auto lcl = A_->getLocalMatrixDevice();
-    auto vals = lcl.values;
-    auto rowPtr = lcl.graph.row_map;
-    auto slot = slot_;
-    auto ident = ident_;
-    auto pattern = pattern_;
-    const GridGeom G = geom_;
-    const CellRows rw = rows_;
-    const bool exact = exact_;
     Kokkos::View<int, MemSpace> changed("poisson_pattern_changed");
-    double amax = 0;
-    Kokkos::parallel_reduce(
-        "poisson_fill", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r, double& rowMax) {
-          int l[3];
-          rw.cell(r, l[0], l[1], l[2]);
-          int mask = 0; // bit q = 3 corner + d: coef_d(corner) != 0
-          for (int q = 0; q < 24; ++q)
-            if (coef.c[q % 3](l[0] + ((q / 3) & 1), l[1] + ((q / 6) & 1), l[2] + ((q / 12) & 1)) != 0)
-              mask |= 1 << q;
-          if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
-          pattern(r) = mask;
-          for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) vals(p) = 0;
-          if (exact) {
-            // A_{c,c'} = sum_{shared nodes n} sum_d coef_d(n)/w_n s_d(c,n) s_d(c',n) / (16 h_d^2)
-            for (int cn = 0; cn < 8; ++cn) {
-              const int a[3] = {cn & 1, (cn >> 1) & 1, (cn >> 2) & 1};
-              const int n[3] = {l[0] + a[0], l[1] + a[1], l[2] + a[2]};
-              const double w = G.nodeWeight(n[0], n[1], n[2]);
-              double cf[3];
-              for (int d = 0; d < 3; ++d)
-                cf[d] = coef.c[d](n[0], n[1], n[2]) / (w * 16 * G.h[d] * G.h[d]) * (a[d] ? 1 : -1);
-              if (cf[0] == 0 && cf[1] == 0 && cf[2] == 0) continue;
-              for (int cm = 0; cm < 8; ++cm) {
-                const int b[3] = {cm & 1, (cm >> 1) & 1, (cm >> 2) & 1}; // 1: c' on the high side of n
-                bool exists = true;
-                for (int d = 0; d < 3; ++d) exists = exists && G.cellExists(d, n[d] - 1 + b[d]);
-                if (!exists) continue;
-                double v = 0;
-                for (int d = 0; d < 3; ++d) v += cf[d] * (b[d] ? -1 : 1);
-                const int o = (a[0] + b[0]) + 3 * (a[1] + b[1]) + 9 * (a[2] + b[2]);
-                vals(slot(r, o)) += v;
-              }
-            }
-          } else {
-            for (int d = 0; d < 3; ++d)
-              for (int s = 0; s < 2; ++s) {
-                double beta = 0; // mean coef_d over the face's 4 nodes
-                for (int cn = 0; cn < 8; ++cn) {
-                  const int a[3] = {cn & 1, (cn >> 1) & 1, (cn >> 2) & 1};
-                  if (a[d] == s) beta += 0.25 * coef.c[d](l[0] + a[0], l[1] + a[1], l[2] + a[2]);
-                }
-                const double c = beta / (G.h[d] * G.h[d]);
-                if (G.cellExists(d, l[d] + (s ? 1 : -1))) {
-                  int o = kCentre + (s ? 1 : -1) * (d == 0 ? 1 : d == 1 ? 3 : 9);
-                  vals(slot(r, o)) -= c;
-                  vals(slot(r, kCentre)) += c;
-                } else {
-                  vals(slot(r, kCentre)) += 2 * c; // outflow: dp = 0 on the face; wall: beta = 0
-                }
-              }
-          }
-          bool empty = true;
-          double sum = 0;
-          for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) {
-            empty = empty && vals(p) == 0;
-            sum += vals(p) < 0 ? -vals(p) : vals(p);
-          }
-          ident(r) = empty ? 1 : 0;
-          if (empty) vals(slot(r, kCentre)) = sum = 1; // all nodes prescribed: p is free, fix it to 0
-          rowMax = rowMax > sum ? rowMax : sum;
-        },
-        Kokkos::Max<double>(amax));
+    const double amax = assemblePoisson(lcl.values, lcl.graph.row_map, slot_, ident_, pattern_, geom_, rows_,
+                                        exact_, coef, nrows_, changed);
     Kokkos::fence();
     MPI_Allreduce(&amax, &anorm_, 1, MPI_DOUBLE, MPI_MAX, comm_);
     int any = 0;
