@@ -17,11 +17,13 @@ h/2; positions good to about h/2).
 import json
 import math
 import os
-import re
 import struct
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 
 def read_h5(path, name, count):
@@ -56,17 +58,6 @@ def jacobi_eig(a):
                     vkp, vkq = v[k][p], v[k][q]
                     v[k][p], v[k][q] = c * vkp - s * vkq, s * vkp + c * vkq
     return [a[i][i] for i in range(3)], v
-
-
-def frames(outdir):
-    x = open(os.path.join(outdir, "fields.xdmf")).read()
-    for g in re.finditer(r'<Grid Name="(fields_\d+\.h5)" GridType="Uniform">(.*?)</Grid>', x, re.S):
-        body = g.group(2)
-        t = float(re.search(r'<Time Value="([^"]+)"', body).group(1))
-        dims = [int(d) - 1 for d in re.search(r'3DCoRectMesh" Dimensions="([^"]+)"', body).group(1).split()]
-        orig = [float(v) for v in re.search(r'Name="Origin"[^>]*>([^<]+)<', body).group(1).split()]
-        sp = [float(v) for v in re.search(r'Name="Spacing"[^>]*>([^<]+)<', body).group(1).split()]
-        yield t, os.path.join(outdir, g.group(1)), dims, orig, sp   # dims, origin, spacing: z y x
 
 
 def heaviside(p, kappa):
@@ -121,7 +112,7 @@ def analyse(outdir, cyl, sharp):
     kcells = smoothing_cells(outdir)
     print("t,volume,cx,cy,cz,vx,vy,vz,tilt_deg,angle_z_deg,bending,gap_cylinder,gap_base,"
           "contact_cylinder,contact_base")
-    for t, path, (nz, ny, nx), (oz, oy, ox), (hz, hy, hx) in frames(outdir):
+    for t, path, (nx, ny, nz), (ox, oy, oz), (hx, hy, hz) in frames(outdir):
         n = nx * ny * nz
         h = min(hx, hy, hz)
         kappa = kcells * h

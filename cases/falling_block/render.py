@@ -13,7 +13,6 @@ looked wrong" 1), which would otherwise colour the surface.
 """
 import argparse
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -29,18 +28,8 @@ import numpy as np  # noqa: E402
 import vtk  # noqa: E402
 from vtk.util import numpy_support as ns  # noqa: E402
 
-
-def frames(outdir):
-    """(time, h5 path, origin xyz, spacing xyz) for every output of a run."""
-    x = open(os.path.join(outdir, "fields.xdmf")).read()
-    out = []
-    for g in re.finditer(r'<Grid Name="(fields_\d+\.h5)" GridType="Uniform">(.*?)</Grid>', x, re.S):
-        body = g.group(2)
-        t = float(re.search(r'<Time Value="([^"]+)"', body).group(1))
-        orig = [float(v) for v in re.search(r'Name="Origin"[^>]*>([^<]+)<', body).group(1).split()][::-1]
-        sp = [float(v) for v in re.search(r'Name="Spacing"[^>]*>([^<]+)<', body).group(1).split()][::-1]
-        out.append((t, os.path.join(outdir, g.group(1)), orig, sp))
-    return out
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 
 def image(arrays, orig, sp):
@@ -137,8 +126,8 @@ def main():
         fr = frames(d)
         row = []
         for t in a.times:
-            best = min(fr, key=lambda f: abs(f[0] - t))
-            row.append((best[0], surface(best[1], best[2], best[3]), best[2], best[3]))
+            best = min(fr, key=lambda f: abs(f.t - t))
+            row.append((best.t, surface(best.path, best.origin, best.spacing), best.origin, best.spacing))
         surfs.append(row)
     if a.range:
         lo, hi = a.range
@@ -232,10 +221,7 @@ def main():
 
 def image_dims(d):
     """Cells per axis (x, y, z) of a run, from its first frame."""
-    fr = frames(d)[0]
-    with h5py.File(fr[1], "r") as f:
-        nz, ny, nx = f["psi"].shape
-    return nx, ny, nz
+    return tuple(frames(d)[0].cells)
 
 
 if __name__ == "__main__":

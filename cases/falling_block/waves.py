@@ -24,7 +24,7 @@ import argparse
 import csv
 import json
 import os
-import re
+import sys
 
 import numpy as np
 import matplotlib
@@ -32,6 +32,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from plots import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 
 def probe(d):
@@ -48,12 +50,6 @@ def probe(d):
     psi = np.array([[p[1] for p in rows[t]] for t in ts])
     s2 = np.array([[p[2] for p in rows[t]] for t in ts])
     return np.array(ts), x, y, psi, s2
-
-
-def cell_size(d):
-    """h along x from the first grid of DIR/fields.xdmf (the Spacing item lists z y x)."""
-    x = open(os.path.join(d, "fields.xdmf")).read()
-    return float(re.search(r'Name="Spacing"[^>]*>([^<]+)<', x).group(1).split()[-1])
 
 
 def impact_time(d):
@@ -130,7 +126,7 @@ def main():
             ax.set_title(label + ": no samples in the window", fontsize=10)
             continue
         t, x, y, psi, s2 = got
-        h = cell_size(d)
+        h = frames(d)[0].spacing[0]
         ti = impact_time(d)
         t0 = max(a.window[0], (ti - 0.002) if ti else a.window[0])
         arrive, fits = front(t, x, y, psi, s2, t0, a.window[1], a.level, h, a.source)

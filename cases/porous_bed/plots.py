@@ -18,13 +18,16 @@ import argparse
 import csv
 import json
 import os
-import re
+import sys
 
 import h5py
 import matplotlib
 import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 Y0, Y1 = 0.10, 0.25            # the paper's bed interior
@@ -38,7 +41,7 @@ def ergun(e):
 
 def midline(d, at=None):
     if at is not None:
-        t, path, sp = frames(d, at)[-1]
+        t, path, _, _, sp = frames(d, at)[-1]
         with h5py.File(path, "r") as f:
             p = f["pressure"][...]                 # (z, y, x), cell centres
         nz, ny, nx = p.shape
@@ -51,18 +54,6 @@ def midline(d, at=None):
     t = max(rows)
     y, p = np.array(sorted(rows[t])).T
     return t, y, p
-
-
-def frames(d, upto=None):
-    """(time, h5 path, spacing xyz) of every output, or of those at or before `upto`."""
-    x = open(os.path.join(d, "fields.xdmf")).read()
-    out = []
-    for g in re.finditer(r'<Grid Name="(fields_\d+\.h5)" GridType="Uniform">(.*?)</Grid>', x, re.S):
-        t = float(re.search(r'<Time Value="([^"]+)"', g.group(2)).group(1))
-        sp = [float(v) for v in re.search(r'Name="Spacing"[^>]*>([^<]+)<', g.group(2)).group(1).split()][::-1]
-        if upto is None or t <= upto + 1e-9:
-            out.append((t, os.path.join(d, g.group(1)), sp))
-    return out
 
 
 def slice_mid(path, name):
@@ -146,7 +137,7 @@ def main():
     f8, ax8 = plt.subplots(1, len(ends) + 1, figsize=(3.2 * len(ends) + 4, 6), squeeze=False)
     for n, (mu, d) in enumerate(ends):
         fr = frames(d, a.time)
-        t, path, sp = fr[-1]
+        t, path, _, _, sp = fr[-1]
         p, psi = slice_mid(path, "pressure"), slice_mid(path, "psi")
         ext = [0, sp[0] * p.shape[1], 0, sp[1] * p.shape[0]]
         im = ax7[0][n].imshow(p, origin="lower", extent=ext, cmap="jet")

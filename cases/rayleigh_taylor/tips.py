@@ -23,11 +23,13 @@ digitised figures at every 0.25:
 """
 import argparse
 import os
-import re
 import sys
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 HE1999 = [  # t_T, bubble, spike
     (0.25, 0.113, -0.121), (0.50, 0.161, -0.165), (0.75, 0.213, -0.243), (1.00, 0.274, -0.348),
@@ -38,15 +40,6 @@ FAKHARI2017 = [
     (0.25, 0.115, -0.117), (0.50, 0.156, -0.170), (0.75, 0.218, -0.257), (1.00, 0.288, -0.371),
     (1.25, 0.359, -0.496), (1.50, 0.429, -0.622), (1.75, 0.495, -0.747), (2.00, 0.557, -0.865),
     (2.25, 0.620, -0.989), (2.50, 0.685, -1.120), (2.75, 0.757, -1.259), (3.00, 0.833, -1.421)]
-
-
-def frames(outdir):
-    """(time, h5 path) for every output, and the cell size, from fields.xdmf."""
-    text = open(os.path.join(outdir, "fields.xdmf")).read()
-    names = re.findall(r'<Grid Name="(fields_\d+\.h5)" GridType="Uniform">\s*<Time Value="([^"]+)"', text)
-    spacing = re.search(r'Name="Spacing"[^>]*>([^<]+)<', text).group(1).split()
-    h = float(spacing[0])  # xdmf order z y x; the cells are cubes here
-    return [(float(t), os.path.join(outdir, n)) for n, t in names], h
 
 
 def crossings(col, h, y0=0.0):
@@ -67,9 +60,10 @@ def tips(psi, h):
 
 
 def analyse(outdir):
-    fr, h = frames(outdir)
+    fr = frames(outdir)
+    h = fr[0].spacing[1]  # vertical cell size: the crossings are along y
     rows = []
-    for t, path in fr:
+    for t, path, *_ in fr:
         with h5py.File(path, "r") as f:
             psi = np.array(f["psi"])[0]  # [z, y, x] -> [y, x]
         b, s = tips(psi, h)
@@ -122,10 +116,10 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         d, rows, h = runs[0]
-        fr, _ = frames(d)
+        fr = frames(d)
         fig, axs = plt.subplots(1, 4, figsize=(8, 4.8), sharey=True)
         for ax, tT in zip(axs, (1.0, 1.5, 2.0, 2.5)):
-            t, path = min(fr, key=lambda f: abs(f[0] / np.sqrt(2) - tT))
+            t, path = min(fr, key=lambda f: abs(f.t / np.sqrt(2) - tT))[:2]
             with h5py.File(path, "r") as f:
                 rho = np.array(f["density"])[0]
             full = np.hstack([rho[:, ::-1], rho, rho[:, ::-1]])  # mirror: one and a half wavelengths

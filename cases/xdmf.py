@@ -1,0 +1,47 @@
+"""The outputs listed in a run's fields.xdmf (Python standard library only).
+
+Voigt's writer (src/io/) lists one uniform grid per output, its HDF5 file, time, node counts,
+origin and spacing, in XDMF's z y x order. Every case script reads them here, in x y z order:
+
+    import sys, os; sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+    from xdmf import frames
+    for f in frames("output/run"):  # f.t, f.path, f.cells, f.origin, f.spacing (x y z)
+"""
+import collections
+import os
+import re
+
+Frame = collections.namedtuple("Frame", "t path cells origin spacing")
+
+_GRID = re.compile(r'<Grid Name="(fields_\d+\.h5)" GridType="Uniform">(.*?)</Grid>', re.S)
+
+
+def _item(body, pattern):
+    m = re.search(pattern, body)
+    if m is None:
+        raise ValueError("fields.xdmf: a grid without %s" % pattern)
+    return m.group(1)
+
+
+def _xyz(text, conv):
+    return [conv(v) for v in text.split()][::-1]
+
+
+def frames(outdir, upto=None):
+    """Every output of OUTDIR in time order, or those at or before `upto` (seconds)."""
+    path = os.path.join(outdir, "fields.xdmf")
+    with open(path) as f:
+        text = f.read()
+    out = []
+    for g in _GRID.finditer(text):
+        body = g.group(2)
+        t = float(_item(body, r'<Time Value="([^"]+)"'))
+        if upto is not None and t > upto + 1e-9:
+            continue
+        nodes = _xyz(_item(body, r'3DCoRectMesh" Dimensions="([^"]+)"'), int)
+        out.append(Frame(t, os.path.join(outdir, g.group(1)), [n - 1 for n in nodes],
+                         _xyz(_item(body, r'Name="Origin"[^>]*>([^<]+)<'), float),
+                         _xyz(_item(body, r'Name="Spacing"[^>]*>([^<]+)<'), float)))
+    if not out and upto is None:
+        raise ValueError("%s lists no outputs" % path)
+    return out
