@@ -36,7 +36,11 @@ def load(d):
                     cols.setdefault(k, []).append(float(v))
                 except (TypeError, ValueError):
                     pass
-    summ = json.load(open(os.path.join(d, "summary.json")))
+    try:
+        summ = json.load(open(os.path.join(d, "summary.json")))
+    except FileNotFoundError:  # a run still going: its contact list comes at the end
+        print("plots.py: %s has no summary.json yet (still running?): no contact markers" % d)
+        summ = {}
     return cols, summ
 
 

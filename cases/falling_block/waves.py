@@ -97,6 +97,17 @@ def front(t, x, y, psi, s2, t0, t1, level, h, src):
     return arrive, fits
 
 
+def wave_speed(d, given):
+    """c_s from DIR/summary.json; a run still going has none yet, so --wave-speed stands in."""
+    try:
+        return json.load(open(os.path.join(d, "summary.json")))["elasticity"]["wave_speed"]
+    except FileNotFoundError:
+        if given is None:
+            raise SystemExit("waves.py: %s has no summary.json (still running?): pass --wave-speed "
+                             "sqrt(mu_S / rho_S)" % d)
+        return given
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "LABEL"), required=True)
@@ -104,6 +115,8 @@ def main():
     ap.add_argument("--level", type=float, default=0.1)
     ap.add_argument("--source", nargs=2, type=float, default=(0.045, 0.0475), metavar=("X", "Y"),
                     help="the contact: the cylinder's top (m)")
+    ap.add_argument("--wave-speed", type=float, metavar="C_S",
+                    help="c_s (m/s) for runs without summary.json yet (still running)")
     ap.add_argument("--title", default="")
     ap.add_argument("-o", "--output", required=True)
     a = ap.parse_args()
@@ -114,11 +127,10 @@ def main():
     if not a.run:
         return
     fig, axes = plt.subplots(1, len(a.run), figsize=(4.2 * len(a.run) + 1, 4.6), squeeze=False)
+    speeds = [wave_speed(d, a.wave_speed) for d, _ in a.run]
     print("| run | impact t_i (s) | source x_0 (cm) | side | front speed (m/s) | c_s (m/s) | speed / c_s | R^2 | points |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for ax, (d, label) in zip(axes[0], a.run):
-        s = json.load(open(os.path.join(d, "summary.json")))
-        cs = s["elasticity"]["wave_speed"]
+    for ax, (d, label), cs in zip(axes[0], a.run, speeds):
         got = probe(d)
         win = got is not None and (got[0] >= a.window[0]) & (got[0] <= a.window[1])
         if got is None or not win.any():
