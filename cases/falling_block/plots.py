@@ -16,10 +16,14 @@ import argparse
 import csv
 import json
 import os
+import sys
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
 STATE_TIMES = (0.04, 0.06, 0.08, 0.10, 0.12, 0.16, 0.20, 0.24, 0.30, 0.36, 0.42, 0.50)
@@ -82,7 +86,7 @@ def main():
                      [at(cols, "solid_tilt_deg", tt) for tt in PAPER_TIMES],
                      [at(cols, "solid_bending", tt) for tt in PAPER_TIMES]))
         h = sb.get("contact_gap")
-        cell = h / sb.get("contact_gap_cells", 1.0) if h else None
+        cell = h / sb.get("contact_gap_cells", 1.0) if h else frames(d)[0].spacing[0]  # running: the grid's h
         states.append((label, state_rows(cols, cell)))
         if cell:
             evs.append((label, events(cols, cell)))
