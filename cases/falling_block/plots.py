@@ -165,6 +165,23 @@ def slowing(ts, vy):
     return None
 
 
+def first_peak(ts, vals, t0, rise=2.0, drop=0.8):
+    """(t, value) of the first maximum after t0 of a quantity that has grown to `rise` times its
+    value at t0 and then fallen below `drop` times that maximum; None if it never does. The
+    bending of the impact itself: a stiff block's later oscillations can exceed it."""
+    top, v0 = None, None
+    for t, v in zip(ts, vals):
+        if t < t0:
+            continue
+        if v0 is None:
+            v0 = v
+        if top is None or v > top[1]:
+            top = (t, v)
+        elif top[1] > rise * v0 and v < drop * top[1]:
+            return top
+    return None
+
+
 def extreme(ts, vals, t0, t1, pick=max):
     """(t, value) of the largest (pick=max) or smallest value in [t0, t1], or None."""
     s = [(v, t) for t, v in zip(ts, vals) if t0 <= t <= t1]
@@ -172,7 +189,7 @@ def extreme(ts, vals, t0, t1, pick=max):
 
 
 EVENT_NAMES = ("mean vy stops falling (s; vy m/s)", "smallest gap to the cylinder in the impact (h, at s)",
-               "lowest centroid (mm, at s)", "rebound (mm, to s)", "peak bending on impact (mm, at s)",
+               "lowest centroid (mm, at s)", "rebound (mm, to s)", "first bending peak after the impact (mm, at s)",
                "slowing to peak bending (ms)", "base: gap < 2 h from (s)", "peak tilt (deg, at s)",
                "largest energy ratio (at s)", "energy ratio, volume change at the end (t s)")
 
@@ -186,7 +203,7 @@ def events(cols, h):
     t_s = slow[0]
     lowest = extreme(ts, cols["solid_cy"], t_s, t_s + 0.05, min)
     rebound = extreme(ts, cols["solid_cy"], lowest[0], lowest[0] + 0.08) if lowest else None
-    bend = extreme(ts, cols["solid_bending"], t_s, t_s + 0.04)
+    bend = first_peak(ts, cols["solid_bending"], t_s)
     gap = [g / h for g in cols["solid_gap_obstacle0"]]
     closest = extreme(ts, gap, t_s, t_s + 0.05, min)
     base = first(ts, [g / h for g in cols["solid_gap_y-"]], lambda g: g < 2)
@@ -198,7 +215,7 @@ def events(cols, h):
         ("smallest gap to the cylinder in the impact (h, at s)", "-" if not closest else "%.2f at %.4f" % closest[::-1]),
         ("lowest centroid (mm, at s)", "-" if not lowest else "%.1f at %.4f" % (1000 * lowest[1], lowest[0])),
         ("rebound (mm, to s)", "-" if not rebound else "%.1f to %.4f" % (1000 * (rebound[1] - lowest[1]), rebound[0])),
-        ("peak bending on impact (mm, at s)", "-" if not bend else "%.2f at %.4f" % (1000 * bend[1], bend[0])),
+        ("first bending peak after the impact (mm, at s)", "-" if not bend else "%.2f at %.4f" % (1000 * bend[1], bend[0])),
         ("slowing to peak bending (ms)", "-" if not bend else "%.1f" % (1000 * (bend[0] - slow[0]))),
         ("base: gap < 2 h from (s)", "-" if not base else "%.4f" % base[0]),
         ("peak tilt (deg, at s)", "%.1f at %.3f" % extreme(ts, [abs(v) for v in cols["solid_tilt_deg"]], 0, ts[-1])[::-1]),
