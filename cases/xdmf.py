@@ -28,7 +28,8 @@ def _xyz(text, conv):
 
 
 def frames(outdir, upto=None):
-    """Every output of OUTDIR in time order, or those at or before `upto` (seconds)."""
+    """Every output of OUTDIR in the order written (time order), or those at or before `upto`
+    (seconds); an error if there are none."""
     path = os.path.join(outdir, "fields.xdmf")
     with open(path) as f:
         text = f.read()
@@ -42,6 +43,6 @@ def frames(outdir, upto=None):
         out.append(Frame(t, os.path.join(outdir, g.group(1)), [n - 1 for n in nodes],
                          _xyz(_item(body, r'Name="Origin"[^>]*>([^<]+)<'), float),
                          _xyz(_item(body, r'Name="Spacing"[^>]*>([^<]+)<'), float)))
-    if not out and upto is None:
-        raise ValueError("%s lists no outputs" % path)
+    if not out:
+        raise ValueError("%s lists no outputs%s" % (path, "" if upto is None else " at or before t = %g s" % upto))
     return out

@@ -42,8 +42,8 @@ def load(d):
                     pass
     try:
         summ = json.load(open(os.path.join(d, "summary.json")))
-    except FileNotFoundError:  # a run still going: its contact list comes at the end
-        print("plots.py: %s has no summary.json yet (still running?): no contact markers" % d)
+    except (FileNotFoundError, ValueError):  # a run still going: summary.json comes at the end
+        print("plots.py: %s has no complete summary.json yet (still running?): no contact markers" % d)
         summ = {}
     return cols, summ
 
@@ -64,7 +64,7 @@ def main():
     a = ap.parse_args()
     fig, ax = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     ax = ax.ravel()
-    rows, states, evs = [], [], []
+    rows, states, evs, h = [], [], [], None
     for n, (d, label) in enumerate(a.run):
         cols, summ = load(d)
         c = "C%d" % n
@@ -85,8 +85,11 @@ def main():
         rows.append((label, first["obstacle0"], starts[1] if len(starts) > 1 else None, first["y-"],
                      [at(cols, "solid_tilt_deg", tt) for tt in PAPER_TIMES],
                      [at(cols, "solid_bending", tt) for tt in PAPER_TIMES]))
-        h = sb.get("contact_gap")
-        cell = h / sb.get("contact_gap_cells", 1.0) if h else frames(d)[0].spacing[0]  # running: the grid's h
+        gap = sb.get("contact_gap")
+        if gap:
+            cell, h = gap / sb.get("contact_gap_cells", 1.0), gap
+        else:  # a run still going: the grid's h
+            cell = frames(d)[0].spacing[0] if not summ else None
         states.append((label, state_rows(cols, cell)))
         if cell:
             evs.append((label, events(cols, cell)))

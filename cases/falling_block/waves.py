@@ -116,7 +116,7 @@ def main():
     ap.add_argument("--source", nargs=2, type=float, default=(0.045, 0.0475), metavar=("X", "Y"),
                     help="the contact: the cylinder's top (m)")
     ap.add_argument("--wave-speed", type=float, metavar="C_S",
-                    help="c_s (m/s) for runs without summary.json yet (still running)")
+                    help="c_s (m/s) for every run without summary.json yet (still running); the others use their own")
     ap.add_argument("--title", default="")
     ap.add_argument("-o", "--output", required=True)
     a = ap.parse_args()
