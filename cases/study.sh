@@ -72,8 +72,12 @@ study_runs() {
     "$py" - "$dir/summary.json" "$mu" "$ranks" "$start" >> "$out/runs.csv" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
+# A resumed run: steps from t = 0 and the wall time of all its segments (their checkpointed
+# steps); a checkpoint older than that record gives only this segment's time.
+wall = s.get("wall_seconds_total")
+wall = s["wall_seconds"] if wall is None else wall
 print("%s,%s,%s,%.6g,%d,%.1f,%s" % (sys.argv[2], "x".join(map(str, s["grid"]["cells"])), sys.argv[3],
-                                    s["simulated_time"], s["steps"], s["wall_seconds"], sys.argv[4]))
+                                    s["simulated_time"], s["steps"], wall, sys.argv[4]))
 PY
   done
   awk -F, 'NR == 1 { print "| mu_S (Pa) | cells | ranks | end time (s) | steps | wall (s) | started (UTC) |"; print "|---|---|---|---|---|---|---|"; next }

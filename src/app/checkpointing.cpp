@@ -98,6 +98,8 @@ nlohmann::json Simulation::checkpointMeta() const {
   j["dt_reason"] = st_.dtReason;
   j["diag"] = st_.diag;
   j["counters"] = st_.counters;
+  j["wall_seconds_total"] = wallBefore_ + (runStart_ < 0 ? 0.0 : MPI_Wtime() - runStart_); // NaN -> null
+  j["run_segments"] = segments_;
   j["next_output"] = nextOutput_;
   j["output_index"] = outputIndex_;
   j["dt_reasons"] = dtReasons_;
@@ -138,6 +140,8 @@ nlohmann::json Simulation::restore(const std::string& file) {
   for (auto& [k, v] : m.at("diag").items()) st_.diag[k] = num(v);
   st_.counters.clear();
   for (auto& [k, v] : m.at("counters").items()) st_.counters[k] = num(v);
+  wallBefore_ = num(m.value("wall_seconds_total", nlohmann::json()));
+  segments_ = m.value("run_segments", 1L) + 1;
   nextOutput_ = m.at("next_output").get<double>();
   outputIndex_ = m.at("output_index").get<int>();
   dtReasons_ = m.at("dt_reasons").get<std::map<std::string, long>>();

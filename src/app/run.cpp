@@ -78,12 +78,16 @@ RunResult Simulation::run() {
   if (ckFile.empty()) output(true);
   const bool tty = opt_.progress && isatty(2) && g.rank == 0;
   const double w0 = MPI_Wtime();
+  runStart_ = w0;
   const long step0 = st_.step;
   RunResult r;
   auto finish = [&]() {
     r.steps = st_.step;
     r.simTime = st_.t;
     r.wallSeconds = MPI_Wtime() - w0;
+    r.stepsThisRun = st_.step - step0;
+    r.wallSecondsTotal = wallBefore_ + r.wallSeconds;
+    r.segments = segments_;
     r.cellStepsPerSecond = r.wallSeconds > 0 ? double(g.cellsGlobal()) * (st_.step - step0) / r.wallSeconds : 0;
   };
   // A blow-up: write the last good state, the summary, and stop (collective).

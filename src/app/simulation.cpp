@@ -283,6 +283,9 @@ nlohmann::json Simulation::summary(const RunResult& r) const {
   j["steps"] = r.steps;
   j["simulated_time"] = r.simTime;
   j["wall_seconds"] = r.wallSeconds;
+  j["steps_this_run"] = r.stepsThisRun;
+  j["wall_seconds_total"] = r.wallSecondsTotal;  // NaN (null): restarted from an older checkpoint
+  j["run_segments"] = r.segments;
   j["cell_steps_per_second"] = r.cellStepsPerSecond;
   j["wall_seconds_per_stage"] = pipeline_.stageSeconds;
   j["wall_seconds_per_effect"] = pipeline_.effectSeconds;

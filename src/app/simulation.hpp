@@ -52,8 +52,11 @@ struct CheckpointCfg {
 };
 
 struct RunResult {
-  long steps = 0;
-  double simTime = 0, wallSeconds = 0;
+  long steps = 0;             // the step reached (a restarted run counts from step 0)
+  long stepsThisRun = 0;      // steps taken by this process
+  double simTime = 0, wallSeconds = 0;  // wallSeconds: this process
+  double wallSecondsTotal = 0;  // with the earlier segments' checkpointed steps (NaN: unknown)
+  long segments = 1;          // this run and the restarts before it
   double cellStepsPerSecond = 0;
   int signal = 0;            // SIGINT/SIGTERM that stopped the run (0: it ran to the end)
   std::string checkpoint;    // the last checkpoint written ("" if none)
@@ -120,6 +123,11 @@ class Simulation {
   long checkpointsWritten_ = 0;
   double checkpointSeconds_ = 0;
   long long checkpointBytes_ = 0;
+  // A run continued over restarts: the wall time up to the checkpoint it started from (NaN if
+  // that checkpoint predates the record) and the number of segments; checkpoints carry both.
+  double wallBefore_ = 0;
+  double runStart_ = -1;  // MPI_Wtime when run() started its loop
+  long segments_ = 1;
 };
 
 } // namespace voigt

@@ -69,8 +69,13 @@ int run(const Scene& scene, RunOptions opt) {
     return 128 + r.signal;
   }
   if (rankOf() == 0) {
-    std::cout << "done: " << r.steps << " steps to t = " << r.simTime << " in " << r.wallSeconds << " s ("
-              << r.cellStepsPerSecond << " cell-steps/s)\n";
+    if (r.segments > 1)  // a restarted run: this segment, and the whole run's cost
+      std::cout << "done: step " << r.steps << ", t = " << r.simTime << "; this segment " << r.stepsThisRun
+                << " steps in " << r.wallSeconds << " s (" << r.cellStepsPerSecond << " cell-steps/s); all "
+                << r.segments << " segments " << r.wallSecondsTotal << " s\n";
+    else
+      std::cout << "done: " << r.steps << " steps to t = " << r.simTime << " in " << r.wallSeconds << " s ("
+                << r.cellStepsPerSecond << " cell-steps/s)\n";
     if (!opt.outDir.empty())
       std::cout << "output: " << opt.outDir << "/fields.xdmf (open in ParaView: File > Open, choose the "
                 << "Xdmf3 reader), summary.json, timeseries.csv\n";

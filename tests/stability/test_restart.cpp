@@ -58,6 +58,16 @@ void expectBitIdenticalRestart(const std::string& scenePath, const std::vector<s
     };
     EXPECT_EQ(read(tmp.sub("full/timeseries.csv")), read(tmp.sub("split/timeseries.csv")));
     EXPECT_EQ(read(tmp.sub("full/fields.xdmf")), read(tmp.sub("split/fields.xdmf")));
+    // The cost of a run continued over a restart: both segments, the steps of each.
+    auto summary = [&](const std::string& d) { return nlohmann::json::parse(read(tmp.sub(d + "/summary.json"))); };
+    const auto a = summary("full"), b = summary("split");
+    EXPECT_EQ(a.at("run_segments"), 1);
+    EXPECT_EQ(a.at("steps_this_run"), n);
+    EXPECT_EQ(a.at("wall_seconds_total").get<double>(), a.at("wall_seconds").get<double>());
+    EXPECT_EQ(b.at("run_segments"), 2);
+    EXPECT_EQ(b.at("steps_this_run"), n - half);
+    EXPECT_EQ(b.at("steps"), n);
+    EXPECT_GT(b.at("wall_seconds_total").get<double>(), b.at("wall_seconds").get<double>());
     for (auto& p : s.probes) {
       const std::string f = "/probe_" + p.name + ".csv";
       EXPECT_FALSE(read(tmp.sub("full") + f).empty()) << f;
