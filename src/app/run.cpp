@@ -88,7 +88,7 @@ RunResult Simulation::run() {
     r.stepsThisRun = st_.step - step0;
     r.wallSecondsTotal = wallBefore_ + r.wallSeconds;
     r.segments = segments_;
-    r.cellStepsPerSecond = r.wallSeconds > 0 ? double(g.cellsGlobal()) * (st_.step - step0) / r.wallSeconds : 0;
+    r.cellStepsPerSecond = r.wallSeconds > 0 ? double(g.cellsGlobal()) * r.stepsThisRun / r.wallSeconds : 0;
   };
   // A blow-up: write the last good state, the summary, and stop (collective).
   auto blowUp = [&](std::string msg, bool currentIsGood) {
