@@ -192,7 +192,9 @@ def extreme(ts, vals, t0, t1, pick=max):
 
 
 EVENT_NAMES = ("mean vy stops falling (s; vy m/s)", "smallest gap to the cylinder in the impact (h, at s)",
-               "lowest centroid (mm, at s)", "rebound (mm, to s)", "first bending peak after the impact (mm, at s)",
+               "lowest centroid (mm, at s)", "rebound (mm, to s)",
+               "closest to the cylinder after the rebound, before the base (h, at s)",
+               "first bending peak after the impact (mm, at s)",
                "slowing to peak bending (ms)", "base: gap < 2 h from (s)", "peak tilt (deg, at s)",
                "largest energy ratio (at s)", "energy ratio, volume change at the end (t s)")
 
@@ -210,6 +212,8 @@ def events(cols, h):
     gap = [g / h for g in cols["solid_gap_obstacle0"]]
     closest = extreme(ts, gap, t_s, t_s + 0.05, min)
     base = first(ts, [g / h for g in cols["solid_gap_y-"]], lambda g: g < 2)
+    # The paper's second hit (~0.2 s): how close the block comes back once it has rebounded.
+    again = extreme(ts, gap, rebound[0], base[0] if base else ts[-1], min) if rebound else None
     pe0 = cols["solid_potential_energy"][0]
     ratio = [(k + e) / (pe0 - p) if pe0 - p > 0 else 0.0
              for k, e, p in zip(cols["kinetic_energy"], cols["elastic_energy"], cols["solid_potential_energy"])]
@@ -218,6 +222,8 @@ def events(cols, h):
         ("smallest gap to the cylinder in the impact (h, at s)", "-" if not closest else "%.2f at %.4f" % closest[::-1]),
         ("lowest centroid (mm, at s)", "-" if not lowest else "%.1f at %.4f" % (1000 * lowest[1], lowest[0])),
         ("rebound (mm, to s)", "-" if not rebound else "%.1f to %.4f" % (1000 * (rebound[1] - lowest[1]), rebound[0])),
+        ("closest to the cylinder after the rebound, before the base (h, at s)",
+         "-" if not again else "%.2f at %.4f" % again[::-1]),
         ("first bending peak after the impact (mm, at s)", "-" if not bend else "%.2f at %.4f" % (1000 * bend[1], bend[0])),
         ("slowing to peak bending (ms)", "-" if not bend else "%.1f" % (1000 * (bend[0] - slow[0]))),
         ("base: gap < 2 h from (s)", "-" if not base else "%.4f" % base[0]),
