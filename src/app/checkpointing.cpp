@@ -20,6 +20,8 @@
 #include "kernels/reductions.hpp"
 #include "scene/reader.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 namespace voigt {
 
 namespace fs = std::filesystem;
@@ -33,7 +35,8 @@ bool isVoigtOutput(const fs::path& dir) {
     const std::string n = e.path().filename().string();
     auto starts = [&](const char* p) { return n.rfind(p, 0) == 0; };
     if (!(starts("fields") || starts("probe_") || starts("checkpoint") || n == "summary.json" ||
-          n == "timeseries.csv" || n == "latest" || n == "latest.tmp" || starts("timeseries.csv")))
+          n == "timeseries.csv" || n == "latest" || n == "latest.tmp" || starts("timeseries.csv") ||
+          starts("scene.yaml")))
       return false;
   }
   return !ec;
@@ -87,6 +90,24 @@ void Simulation::prepareOutputDir() {
     MPI_Bcast(msg.data(), int(n), MPI_CHAR, 0, g.comm);
     throw std::runtime_error(msg);
   }
+  if (g.rank == 0) writeSceneRecord();
+}
+
+// scene.yaml: the scene as this segment ran it (file plus --set overrides, validated), so a
+// run's output says what produced it while it is still running. Rank 0; atomic.
+void Simulation::writeSceneRecord() const {
+  const std::string path = opt_.outDir + "/scene.yaml", tmp = path + ".tmp";
+  std::ofstream os(tmp, std::ios::trunc);
+  os << "# The scene this run used (written by Voigt at the start of each run segment):\n# "
+     << (scene_.path.empty() ? std::string("built-in") : scene_.path) << "\n";
+  if (scene_.source)
+    for (const auto& o : scene_.source->overrides) os << "# --set " << o.text << "\n";
+  YAML::Emitter e;
+  e << scene_.root;
+  os << e.c_str() << "\n";
+  os.close();
+  if (!os || std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
 }
 
 nlohmann::json Simulation::checkpointMeta() const {

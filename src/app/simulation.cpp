@@ -278,6 +278,9 @@ nlohmann::json Simulation::summary(const RunResult& r) const {
   const Grid& g = st_.grid;
   nlohmann::json j;
   j["scene"] = scene_.path;
+  j["scene_overrides"] = nlohmann::json::array();  // scene.yaml beside this file: the whole scene
+  if (scene_.source)
+    for (const auto& o : scene_.source->overrides) j["scene_overrides"].push_back(o.text);
   j["grid"] = {{"cells", g.n}, {"ranks", g.size}, {"decomposition", g.dims}};
   j["effects"] = scene_.effects;
   j["steps"] = r.steps;

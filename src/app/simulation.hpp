@@ -98,6 +98,7 @@ class Simulation {
   void writeTimeSeries();
   void writeTimeSeriesRow(std::ostream& os, bool header);
   void prepareOutputDir();
+  void writeSceneRecord() const;
   std::string writeCheckpoint(const FieldStore& fields, const nlohmann::json& meta);
   void snapshot();
   void writeSummary(const RunResult& r, const std::string& stop);

@@ -68,6 +68,15 @@ void expectBitIdenticalRestart(const std::string& scenePath, const std::vector<s
     EXPECT_EQ(b.at("steps_this_run"), n - half);
     EXPECT_EQ(b.at("steps"), n);
     EXPECT_GT(b.at("wall_seconds_total").get<double>(), b.at("wall_seconds").get<double>());
+    // scene.yaml records the scene as run (file plus --set): it loads back to the same tree,
+    // and summary.json lists the --set overrides in order.
+    LoadOptions lo{{}, knownEffectNames(), effectSections()};
+    lo.extraSections.insert("checkpoint");
+    const Scene rec = loadScene(tmp.sub("split/scene.yaml"), lo);
+    EXPECT_EQ(YAML::Dump(rec.root), YAML::Dump(s.root));
+    ASSERT_EQ(b.at("scene_overrides").size(), s.source->overrides.size());
+    for (size_t i = 0; i < s.source->overrides.size(); ++i)
+      EXPECT_EQ(b.at("scene_overrides")[i], s.source->overrides[i].text);
     for (auto& p : s.probes) {
       const std::string f = "/probe_" + p.name + ".csv";
       EXPECT_FALSE(read(tmp.sub("full") + f).empty()) << f;
