@@ -23,6 +23,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from scene_record import cylinder  # noqa: E402  (cases/scene_record.py)
 from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 
@@ -220,7 +221,7 @@ if __name__ == "__main__":
     args = sys.argv[1:]
     if not args or args[0].startswith("-"):
         sys.exit(__doc__)
-    cyl = (0.045, 0.0375, 0.01)   # the scene's cylinder (axis z)
+    cyl = cylinder(args[0])   # the run's cylinder (axis z), from its scene.yaml
     if "--cylinder" in args:
         i = args.index("--cylinder")
         cyl = tuple(float(v) for v in args[i + 1:i + 4])

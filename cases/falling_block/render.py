@@ -29,6 +29,7 @@ import vtk  # noqa: E402
 from vtk.util import numpy_support as ns  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from scene_record import cylinder  # noqa: E402  (cases/scene_record.py)
 from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 
@@ -110,7 +111,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "LABEL"), required=True)
     ap.add_argument("--times", nargs="+", type=float, default=[0.04, 0.08, 0.12, 0.24])
-    ap.add_argument("--cylinder", nargs=3, type=float, default=[0.045, 0.0375, 0.01], metavar=("X", "Y", "R"))
+    ap.add_argument("--cylinder", nargs=3, type=float, default=None, metavar=("X", "Y", "R"),
+                    help="default: each run's scene.yaml (scene_record.py)")
     ap.add_argument("--range", nargs=2, type=float, default=None, help="log10_S2 colour range")
     ap.add_argument("--panel", nargs=2, type=int, default=[260, 230])
     ap.add_argument("--title", default="")
@@ -120,9 +122,10 @@ def main():
     pw, ph = a.panel
     top, bar = 28, 60
     W, H = pw * cols, ph * rows + top + bar
-    surfs, dims = [], []
+    surfs, dims, cyls = [], [], []
     for d, _ in a.run:
         dims.append(image_dims(d))
+        cyls.append(a.cylinder or cylinder(d))
         fr = frames(d)
         row = []
         for t in a.times:
@@ -168,7 +171,7 @@ def main():
             ba.GetProperty().SetColor(0.4, 0.4, 0.4)
             ren.AddActor(ba)
             cy = vtk.vtkCylinderSource()     # along y; turned to z
-            cy.SetRadius(a.cylinder[2])
+            cy.SetRadius(cyls[r][2])
             cy.SetHeight(hi_[2] - orig[2])
             cy.SetResolution(40)
             cm = vtk.vtkPolyDataMapper()
@@ -176,7 +179,7 @@ def main():
             ca = vtk.vtkActor()
             ca.SetMapper(cm)
             ca.RotateX(90)
-            ca.SetPosition(a.cylinder[0], a.cylinder[1], 0.5 * (orig[2] + hi_[2]))
+            ca.SetPosition(cyls[r][0], cyls[r][1], 0.5 * (orig[2] + hi_[2]))
             ca.GetProperty().SetColor(0.75, 0.75, 0.75)
             ca.GetProperty().SetAmbient(0.35)
             ren.AddActor(ca)

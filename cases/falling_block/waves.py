@@ -11,7 +11,7 @@ i.e. first rises 1 % of its size above its running minimum. Only samples more th
 inside the block count (psi > h: the band's air side carries stress from the air flow, README).
 Arrival at x: the first time after t_i - 2 ms at which S2 there exceeds LEVEL times the largest
 S2 on the line in the window. The source is the contact, the cylinder's top under the block
-(--source X Y, default the scene's 4.5, 4.75 cm); the front speed on each side is 1 / slope
+(--source X Y; default the top of the cylinder in the run's scene.yaml, or 4.5, 4.75 cm for runs without one); the front speed on each side is 1 / slope
 of a Theil-Sen line (median pairwise slope) of arrival time against the distance r from the
 source, over 2 h <= |x - x_0| <= 2.5 cm, printed only where that line explains the arrivals
 (R^2 >= 0.8). Caveats: the load builds up for ~15 ms after t_i while a shear wave crosses
@@ -33,6 +33,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from plots import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from scene_record import cylinder  # noqa: E402  (cases/scene_record.py)
 from xdmf import frames  # noqa: E402  (cases/xdmf.py)
 
 
@@ -113,8 +114,8 @@ def main():
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "LABEL"), required=True)
     ap.add_argument("--window", nargs=2, type=float, default=(0.04, 0.10), metavar=("T0", "T1"))
     ap.add_argument("--level", type=float, default=0.1)
-    ap.add_argument("--source", nargs=2, type=float, default=(0.045, 0.0475), metavar=("X", "Y"),
-                    help="the contact: the cylinder's top (m)")
+    ap.add_argument("--source", nargs=2, type=float, default=None, metavar=("X", "Y"),
+                    help="the contact (m); default: the top of each run's cylinder (scene_record.py)")
     ap.add_argument("--wave-speed", type=float, metavar="C_S",
                     help="c_s (m/s) for every run without summary.json yet (still running); the others use their own")
     ap.add_argument("--title", default="")
@@ -138,19 +139,21 @@ def main():
             ax.set_title(label + ": no samples in the window", fontsize=10)
             continue
         t, x, y, psi, s2 = got
+        cx, cy, cr = cylinder(d)
+        src = a.source or (cx, cy + cr)
         h = frames(d)[0].spacing[0]
         ti = impact_time(d)
         t0 = max(a.window[0], (ti - 0.002) if ti else a.window[0])
-        arrive, fits = front(t, x, y, psi, s2, t0, a.window[1], a.level, h, a.source)
+        arrive, fits = front(t, x, y, psi, s2, t0, a.window[1], a.level, h, src)
         img = np.where(psi[win] > h, np.log10(np.maximum(s2[win], 1e-3)), np.nan)
         m = ax.pcolormesh(x * 100, t[win] * 1000, img, shading="nearest", cmap="viridis")
         fig.colorbar(m, ax=ax, label="log10 S2 (Pa^2), more than a cell inside")
         ax.plot(x * 100, arrive * 1000, "w.", ms=3, label="arrival (S2 > %g of its peak)" % a.level)
         if not np.all(np.isnan(arrive)):
-            tx0 = np.nanmin(arrive) - np.hypot(0, y - a.source[1]) / cs
+            tx0 = np.nanmin(arrive) - np.hypot(0, y - src[1]) / cs
             dx = np.linspace(0, 0.03, 31)
             for sgn in (-1, 1):
-                ax.plot((a.source[0] + sgn * dx) * 100, (tx0 + np.hypot(dx, y - a.source[1]) / cs) * 1000, "r--", lw=1)
+                ax.plot((src[0] + sgn * dx) * 100, (tx0 + np.hypot(dx, y - src[1]) / cs) * 1000, "r--", lw=1)
             ax.plot([], [], "r--", lw=1, label="c_s = %.2f m/s from the contact" % cs)
         if ti:
             ax.axhline(ti * 1000, color="w", lw=0.8, ls=":")
@@ -162,7 +165,7 @@ def main():
             fits = [("-", None, None, 0)]
         for side, v, r2, npts in fits:
             print("| %s | %s | %s | %s | %s | %.2f | %s | %s | %d |" % (
-                label, "%.4f" % ti if ti else "-", "%.2f" % (a.source[0] * 100), side,
+                label, "%.4f" % ti if ti else "-", "%.2f" % (src[0] * 100), side,
                 "%.2f" % v if v else "-", cs, "%.2f" % (v / cs) if v else "-", "%.3f" % r2 if r2 is not None else "-",
                 npts))
     if a.title:
