@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "core/index_space.hpp"
@@ -113,6 +114,7 @@ void Simulation::writeSceneRecord() const {
 nlohmann::json Simulation::checkpointMeta() const {
   nlohmann::json j;
   j["scene"] = scene_.name;
+  j["scene_yaml"] = YAML::Dump(scene_.root); // a restart names the sections it changes
   j["t"] = st_.t;
   j["dt"] = st_.dt;
   j["step"] = st_.step;
@@ -162,6 +164,18 @@ nlohmann::json Simulation::restore(const std::string& file) {
   st_.counters.clear();
   for (auto& [k, v] : m.at("counters").items()) st_.counters[k] = num(v);
   wallBefore_ = num(m.value("wall_seconds_total", nlohmann::json()));
+  // Sections of the scene that differ from the checkpoint's (a restart may change them on
+  // purpose, e.g. time.end, or by mistake, e.g. an obstacle): printed and in summary.json.
+  restartSceneChanges_.clear();
+  if (m.contains("scene_yaml")) {
+    const YAML::Node was = YAML::Load(m.at("scene_yaml").get<std::string>());
+    std::set<std::string> keys;
+    for (const auto& kv : was) keys.insert(kv.first.as<std::string>());
+    for (const auto& kv : scene_.root) keys.insert(kv.first.as<std::string>());
+    for (const auto& k : keys)
+      if (!was[k] || !scene_.root[k] || YAML::Dump(was[k]) != YAML::Dump(scene_.root[k]))
+        restartSceneChanges_.push_back(k);
+  }
   segments_ = m.value("run_segments", 1L) + 1;
   nextOutput_ = m.at("next_output").get<double>();
   outputIndex_ = m.at("output_index").get<int>();

@@ -70,6 +70,11 @@ RunResult Simulation::run() {
     const nlohmann::json ckMeta = restore(ckFile);
     if (g.rank == 0) {
       std::cout << "restart: " << ckFile << " (step " << st_.step << ", t = " << st_.t << ")" << std::endl;
+      if (!restartSceneChanges_.empty()) {
+        std::cout << "restart: the scene differs from the checkpoint's in:";
+        for (const auto& k : restartSceneChanges_) std::cout << " " << k;
+        std::cout << " (the new values apply from here; scene.yaml has them)" << std::endl;
+      }
       // Rows a crashed run wrote after its checkpoint are written again.
       if (!opt_.outDir.empty()) truncateOutputs(opt_.outDir, ckMeta.value("output_file_sizes", nlohmann::json::object()));
     }

@@ -129,6 +129,7 @@ class Simulation {
   double wallBefore_ = 0;
   double runStart_ = -1;  // MPI_Wtime when run() started its loop
   long segments_ = 1;
+  std::vector<std::string> restartSceneChanges_; // top-level scene keys unlike the checkpoint's
 };
 
 } // namespace voigt

@@ -74,6 +74,7 @@ void expectBitIdenticalRestart(const std::string& scenePath, const std::vector<s
     lo.extraSections.insert("checkpoint");
     const Scene rec = loadScene(tmp.sub("split/scene.yaml"), lo);
     EXPECT_EQ(YAML::Dump(rec.root), YAML::Dump(s.root));
+    EXPECT_TRUE(b.at("restart_scene_changes").empty()) << b.at("restart_scene_changes");
     ASSERT_EQ(b.at("scene_overrides").size(), s.source->overrides.size());
     for (size_t i = 0; i < s.source->overrides.size(); ++i)
       EXPECT_EQ(b.at("scene_overrides")[i], s.source->overrides[i].text);
@@ -120,6 +121,26 @@ TEST(Restart, FromFinalCheckpointBitIdentical) {
     };
     for (const char* f : {"/timeseries.csv", "/fields.xdmf", "/probe_quarter.csv"})
       EXPECT_EQ(read(tmp.sub("full") + f), read(tmp.sub("split") + f)) << f;
+  }
+}
+
+TEST(Restart, NamesTheSceneSectionsItChanges) {
+  // A restart may change the scene (here the output interval):
+  // it goes on, and summary.json names the top-level sections that differ from the checkpoint's.
+  TempDir tmp;
+  const auto sets = with(kTaylorGreen, {"checkpoint.interval=3"});
+  {
+    Simulation first(caseScene("taylor_green/taylor_green.yaml", sets), MPI_COMM_WORLD, runOpts(tmp.sub("r"), 3));
+    first.run();
+  }
+  Simulation second(caseScene("taylor_green/taylor_green.yaml", with(sets, {"output.interval=0.5"})), MPI_COMM_WORLD,
+                    runOpts(tmp.sub("r"), 6, tmp.sub("r")));
+  second.run();
+  EXPECT_EQ(second.state().step, 6);
+  if (worldRank() == 0) {
+    std::ifstream in(tmp.sub("r/summary.json"));
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j.at("restart_scene_changes"), nlohmann::json::array({"output"}));
   }
 }
 
