@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Block diagnostics from a falling_block run's HDF5 output (Python 3 standard library + h5dump).
+"""Block diagnostics from a falling_block run's HDF5 output (Python 3 standard library + h5dump;
+python3-yaml for the run's scene record, unless --cylinder is given).
 
 An independent check of the solver's `solid_body` effect (timeseries.csv, every step): at every
 output time the same measures from the written fields, with the same definitions
@@ -221,11 +222,12 @@ if __name__ == "__main__":
     args = sys.argv[1:]
     if not args or args[0].startswith("-"):
         sys.exit(__doc__)
-    cyl = cylinder(args[0])   # the run's cylinder (axis z), from its scene.yaml
-    if "--cylinder" in args:
-        i = args.index("--cylinder")
-        cyl = tuple(float(v) for v in args[i + 1:i + 4])
     if "--probes" in args:
         probes(args[0])
     else:
+        if "--cylinder" in args:
+            i = args.index("--cylinder")
+            cyl = tuple(float(v) for v in args[i + 1:i + 4])
+        else:
+            cyl = cylinder(args[0])   # the run's cylinder (axis z), from its scene record
         analyse(args[0], cyl, "--sharp" in args)

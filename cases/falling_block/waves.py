@@ -4,7 +4,7 @@ falling_block.yaml) against time, one panel per run, and the speed of its front 
 shear-wave speed c_s = sqrt(mu_S / rho_S) (summary.json). Python 3 + numpy + matplotlib.
 
     cases/falling_block/waves.py -o waves.png --run output/fb_5000 "mu_S = 5000 Pa" [--run ...]
-        [--window 0.04 0.10] [--level 0.1] [--source 0.045 0.0475] [--title TEXT]
+        [--window 0.04 0.10] [--level 0.1] [--source X Y] [--title TEXT]
 
 Impact time t_i: the block's mean vertical velocity (timeseries.csv, solid_vy) stops falling,
 i.e. first rises 1 % of its size above its running minimum. Only samples more than a cell
@@ -139,8 +139,11 @@ def main():
             ax.set_title(label + ": no samples in the window", fontsize=10)
             continue
         t, x, y, psi, s2 = got
-        cx, cy, cr = cylinder(d)
-        src = a.source or (cx, cy + cr)
+        if a.source:
+            src = a.source
+        else:
+            cx, cy, cr = cylinder(d)
+            src = (cx, cy + cr)
         h = frames(d)[0].spacing[0]
         ti = impact_time(d)
         t0 = max(a.window[0], (ti - 0.002) if ti else a.window[0])

@@ -11,7 +11,6 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <set>
 #include <sstream>
 
 #include "core/index_space.hpp"
@@ -37,7 +36,7 @@ bool isVoigtOutput(const fs::path& dir) {
     auto starts = [&](const char* p) { return n.rfind(p, 0) == 0; };
     if (!(starts("fields") || starts("probe_") || starts("checkpoint") || n == "summary.json" ||
           n == "timeseries.csv" || n == "latest" || n == "latest.tmp" || starts("timeseries.csv") ||
-          starts("scene.yaml")))
+          starts("scene.yaml") || starts("scene_segment")))
       return false;
   }
   return !ec;
@@ -82,6 +81,13 @@ void Simulation::prepareOutputDir() {
       if (!ok)
         bad = 1, msg = "output directory '" + opt_.outDir + "' is not writable: " + std::strerror(e ? e : EIO);
     }
+    if (!bad && opt_.restart.empty()) { // a restart records its scene once it has restored (run.cpp)
+      try {
+        writeSceneRecord("scene.yaml", "segment 1");
+      } catch (const std::exception& e) {
+        bad = 1, msg = e.what();
+      }
+    }
   }
   MPI_Bcast(&bad, 1, MPI_INT, 0, g.comm);
   if (bad) {
@@ -91,24 +97,6 @@ void Simulation::prepareOutputDir() {
     MPI_Bcast(msg.data(), int(n), MPI_CHAR, 0, g.comm);
     throw std::runtime_error(msg);
   }
-  if (g.rank == 0) writeSceneRecord();
-}
-
-// scene.yaml: the scene as this segment ran it (file plus --set overrides, validated), so a
-// run's output says what produced it while it is still running. Rank 0; atomic.
-void Simulation::writeSceneRecord() const {
-  const std::string path = opt_.outDir + "/scene.yaml", tmp = path + ".tmp";
-  std::ofstream os(tmp, std::ios::trunc);
-  os << "# The scene this run used (written by Voigt at the start of each run segment):\n# "
-     << (scene_.path.empty() ? std::string("built-in") : scene_.path) << "\n";
-  if (scene_.source)
-    for (const auto& o : scene_.source->overrides) os << "# --set " << o.text << "\n";
-  YAML::Emitter e;
-  e << scene_.root;
-  os << e.c_str() << "\n";
-  os.close();
-  if (!os || std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
 }
 
 nlohmann::json Simulation::checkpointMeta() const {
@@ -164,19 +152,8 @@ nlohmann::json Simulation::restore(const std::string& file) {
   st_.counters.clear();
   for (auto& [k, v] : m.at("counters").items()) st_.counters[k] = num(v);
   wallBefore_ = num(m.value("wall_seconds_total", nlohmann::json()));
-  // Sections of the scene that differ from the checkpoint's (a restart may change them on
-  // purpose, e.g. time.end, or by mistake, e.g. an obstacle): printed and in summary.json.
-  restartSceneChanges_.clear();
-  if (m.contains("scene_yaml")) {
-    const YAML::Node was = YAML::Load(m.at("scene_yaml").get<std::string>());
-    std::set<std::string> keys;
-    for (const auto& kv : was) keys.insert(kv.first.as<std::string>());
-    for (const auto& kv : scene_.root) keys.insert(kv.first.as<std::string>());
-    for (const auto& k : keys)
-      if (!was[k] || !scene_.root[k] || YAML::Dump(was[k]) != YAML::Dump(scene_.root[k]))
-        restartSceneChanges_.push_back(k);
-  }
   segments_ = m.value("run_segments", 1L) + 1;
+  compareScene(m);
   nextOutput_ = m.at("next_output").get<double>();
   outputIndex_ = m.at("output_index").get<int>();
   dtReasons_ = m.at("dt_reasons").get<std::map<std::string, long>>();

@@ -70,11 +70,14 @@ RunResult Simulation::run() {
     const nlohmann::json ckMeta = restore(ckFile);
     if (g.rank == 0) {
       std::cout << "restart: " << ckFile << " (step " << st_.step << ", t = " << st_.t << ")" << std::endl;
-      if (!restartSceneChanges_.empty()) {
+      if (!restartSceneCompared_) {
+        std::cout << "restart: the checkpoint carries no scene; this one is not compared with it" << std::endl;
+      } else if (!restartSceneChanges_.empty()) {
         std::cout << "restart: the scene differs from the checkpoint's in:";
         for (const auto& k : restartSceneChanges_) std::cout << " " << k;
-        std::cout << " (the new values apply from here; scene.yaml has them)" << std::endl;
+        std::cout << " (the new values apply from here; recorded in scene_segment" << segments_ << ".yaml)" << std::endl;
       }
+      if (!opt_.outDir.empty()) recordRestartScene();
       // Rows a crashed run wrote after its checkpoint are written again.
       if (!opt_.outDir.empty()) truncateOutputs(opt_.outDir, ckMeta.value("output_file_sizes", nlohmann::json::object()));
     }

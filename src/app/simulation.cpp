@@ -289,7 +289,8 @@ nlohmann::json Simulation::summary(const RunResult& r) const {
   j["steps_this_run"] = r.stepsThisRun;
   j["wall_seconds_total"] = r.wallSecondsTotal;  // NaN (null): restarted from an older checkpoint
   j["run_segments"] = r.segments;
-  j["restart_scene_changes"] = restartSceneChanges_;
+  // null: a fresh run, or a checkpoint that carries no scene to compare with
+  j["restart_scene_changes"] = restartSceneCompared_ ? nlohmann::json(restartSceneChanges_) : nlohmann::json();
   j["cell_steps_per_second"] = r.cellStepsPerSecond;
   j["wall_seconds_per_stage"] = pipeline_.stageSeconds;
   j["wall_seconds_per_effect"] = pipeline_.effectSeconds;

@@ -98,7 +98,9 @@ class Simulation {
   void writeTimeSeries();
   void writeTimeSeriesRow(std::ostream& os, bool header);
   void prepareOutputDir();
-  void writeSceneRecord() const;
+  void writeSceneRecord(const std::string& file, const std::string& note) const; // scene_record.cpp
+  void compareScene(const nlohmann::json& checkpointMeta);
+  void recordRestartScene() const;
   std::string writeCheckpoint(const FieldStore& fields, const nlohmann::json& meta);
   void snapshot();
   void writeSummary(const RunResult& r, const std::string& stop);
@@ -130,6 +132,7 @@ class Simulation {
   double runStart_ = -1;  // MPI_Wtime when run() started its loop
   long segments_ = 1;
   std::vector<std::string> restartSceneChanges_; // top-level scene keys unlike the checkpoint's
+  bool restartSceneCompared_ = false;            // false: fresh run, or checkpoint without a scene
 };
 
 } // namespace voigt
