@@ -102,7 +102,7 @@ void Simulation::prepareOutputDir() {
 nlohmann::json Simulation::checkpointMeta() const {
   nlohmann::json j;
   j["scene"] = scene_.name;
-  j["scene_yaml"] = YAML::Dump(scene_.root); // a restart names the sections it changes
+  j["scene_yaml"] = sceneYaml_; // a restart names the sections it changes
   j["t"] = st_.t;
   j["dt"] = st_.dt;
   j["step"] = st_.step;

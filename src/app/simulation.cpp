@@ -1,6 +1,7 @@
 #include "app/simulation.hpp"
 
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <climits>
 #include <csignal>
@@ -61,7 +62,8 @@ void checkSceneAgainstFields(const Scene& sc, const State& st, bool backup) {
 }
 } // namespace
 
-Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt) : scene_(scene), opt_(opt) {
+Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt)
+    : scene_(scene), sceneYaml_(YAML::Dump(scene_.root)), opt_(opt) {
   st_.scene = &scene_;
   std::array<bool, 3> per{scene_.periodic(0), scene_.periodic(1), scene_.periodic(2)};
   try {

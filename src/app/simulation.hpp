@@ -106,6 +106,7 @@ class Simulation {
   void writeSummary(const RunResult& r, const std::string& stop);
 
   Scene scene_;
+  std::string sceneYaml_;  // scene_.root dumped once: every checkpoint (and last-good snapshot) carries it
   RunOptions opt_;
   State st_;
   Pipeline pipeline_;

@@ -27,14 +27,19 @@ inline int worldSize() {
   return s;
 }
 
-// A case scene with --set style overrides (the `checkpoint` section allowed, as in `voigt run`).
-inline Scene caseScene(const std::string& rel, std::vector<std::string> sets) {
+// The loader options of `voigt run`: every effect and its section, and `checkpoint`.
+inline LoadOptions runLoadOptions(std::vector<std::string> sets = {}) {
   LoadOptions lo;
   lo.overrides = std::move(sets);
   lo.knownEffects = knownEffectNames();
   lo.extraSections = effectSections();
   lo.extraSections.insert("checkpoint");
-  return loadScene(std::string(VOIGT_SOURCE_DIR) + "/cases/" + rel, lo);
+  return lo;
+}
+
+// A case scene with --set style overrides.
+inline Scene caseScene(const std::string& rel, std::vector<std::string> sets) {
+  return loadScene(std::string(VOIGT_SOURCE_DIR) + "/cases/" + rel, runLoadOptions(std::move(sets)));
 }
 
 // A fresh empty directory, the same path on every rank of comm; removed by the destructor.

@@ -70,9 +70,7 @@ void expectBitIdenticalRestart(const std::string& scenePath, const std::vector<s
     EXPECT_GT(b.at("wall_seconds_total").get<double>(), b.at("wall_seconds").get<double>());
     // scene.yaml records the scene as run (file plus --set): it loads back to the same tree,
     // and summary.json lists the --set overrides in order.
-    LoadOptions lo{{}, knownEffectNames(), effectSections()};
-    lo.extraSections.insert("checkpoint");
-    const Scene rec = loadScene(tmp.sub("split/scene.yaml"), lo);
+    const Scene rec = loadScene(tmp.sub("split/scene.yaml"), runLoadOptions());
     EXPECT_EQ(YAML::Dump(rec.root), YAML::Dump(s.root));
     EXPECT_TRUE(a.at("restart_scene_changes").is_null());  // a fresh run compares nothing
     EXPECT_EQ(b.at("restart_scene_changes"), nlohmann::json::array()) << b.at("restart_scene_changes");
@@ -144,10 +142,8 @@ TEST(Restart, NamesTheSceneSectionsItChanges) {
     const auto j = nlohmann::json::parse(in);
     EXPECT_EQ(j.at("restart_scene_changes"), nlohmann::json::array({"output"}));
     // The first segment's record stays; the second's is beside it, with its own interval.
-    LoadOptions lo{{}, knownEffectNames(), effectSections()};
-    lo.extraSections.insert("checkpoint");
-    EXPECT_NE(loadScene(tmp.sub("r/scene.yaml"), lo).output.interval, 0.5);
-    EXPECT_EQ(loadScene(tmp.sub("r/scene_segment2.yaml"), lo).output.interval, 0.5);
+    EXPECT_NE(loadScene(tmp.sub("r/scene.yaml"), runLoadOptions()).output.interval, 0.5);
+    EXPECT_EQ(loadScene(tmp.sub("r/scene_segment2.yaml"), runLoadOptions()).output.interval, 0.5);
   }
 }
 
