@@ -209,8 +209,8 @@ TEST(Restart, CheckpointFilesAtomicAndPruned) {
 // Rank 0 alone writes a checkpoint at step `half`; both ranks continue it to n and must match
 // a 2-rank run from the start to 1e-8 relative (the rank count changes only the order of the
 // solver's sums; the scenes solve to 1e-10 or tighter). `diag`: a state diagnostic, to 1e-12.
-static void expectOneRankContinuedOnTwo(const Scene& s, long n, long half, TempDir& tmp, const std::string& metric,
-                                 const std::string& diag = "") {
+static void expectOneRankContinuedOnTwo(const Scene& s, long n, long half, TempDir& tmp,
+                                        const std::string& metric, const std::string& diag = "") {
   if (worldRank() == 0) {
     Simulation one(s, MPI_COMM_SELF, runOpts(tmp.sub("one"), half));
     one.run();
