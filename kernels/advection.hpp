@@ -25,21 +25,34 @@ KOKKOS_INLINE_FUNCTION double limitedSlope(int lim, double a, double b) {
   return sgn * (m < c ? m : c);
 }
 
+// Face-flux scratch of the advection kernels (advection_faces.hpp): slot s of
+// the face between points i-1 and i along an axis lives at F(i, j, k, s).
+// Grown on demand, owned by the caller so that steps do not allocate.
+struct FluxScratch {
+  Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace> F;
+  void reserve(const Grid& g, int slots) {
+    if ((int)F.extent(0) != g.ext[0] || (int)F.extent(1) != g.ext[1] || (int)F.extent(2) != g.ext[2] ||
+        (int)F.extent(3) < slots)
+      F = decltype(F)(Kokkos::view_alloc(std::string("advection_face_flux"), Kokkos::WithoutInitializing), g.ext[0],
+                      g.ext[1], g.ext[2], slots);
+  }
+};
+
 // MUSCL states either side of the face between q(-1..2) positions 0|1.
-KOKKOS_INLINE_FUNCTION void musclStates(int lim, double qm1, double q0, double q1, double q2, double& qL,
+KOKKOS_FORCEINLINE_FUNCTION void musclStates(int lim, double qm1, double q0, double q1, double q2, double& qL,
                                         double& qR) {
   qL = q0 + 0.5 * limitedSlope(lim, q0 - qm1, q1 - q0);
   qR = q1 - 0.5 * limitedSlope(lim, q1 - q0, q2 - q1);
 }
 
 // Kurganov-Tadmor flux of states qL|qR at a face moving at speed a.
-KOKKOS_INLINE_FUNCTION double ktFlux(double a, double qL, double qR) {
+KOKKOS_FORCEINLINE_FUNCTION double ktFlux(double a, double qL, double qR) {
   const double aa = a < 0 ? -a : a;
   return 0.5 * a * (qL + qR) - 0.5 * aa * (qR - qL);
 }
 
 // Flux through the face between q(-1..2) positions 0|1, advecting speed a.
-KOKKOS_INLINE_FUNCTION double centralFlux(int lim, double qm1, double q0, double q1, double q2, double a) {
+KOKKOS_FORCEINLINE_FUNCTION double centralFlux(int lim, double qm1, double q0, double q1, double q2, double a) {
   double qL, qR;
   musclStates(lim, qm1, q0, q1, q2, qL, qR);
   return ktFlux(a, qL, qR);

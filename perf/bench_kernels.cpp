@@ -18,6 +18,7 @@
 #include "common.hpp"
 #include "core/halo.hpp"
 #include "kernels/advection.hpp"
+#include "kernels/advection_faces.hpp"
 #include "kernels/elastic.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/projection_ops.hpp"
@@ -112,16 +113,59 @@ void loop(benchmark::State& s, F&& f) {
 }
 
 // --- advection ---
-// Node advection, 3 components: each reads u (3), RMW rhs (2): 3 * 5 doubles.
+// Node advection of u by u, 3 components, face-flux form as the step runs it
+// (kernels/advection_faces.hpp): reads u (3), RMW rhs (3 * 2): 9 doubles.
+// The point-wise form (3 addNodeAdvection calls, each face flux twice) beside
+// it for the ratio; same byte count.
+FluxScratch* gScratch = nullptr; // freed before Kokkos::finalize
+FluxScratch& scratch() {
+  if (!gScratch) gScratch = new FluxScratch;
+  return *gScratch;
+}
 void BM_NodeAdvection(benchmark::State& s) {
   auto& f = fx();
-  loop(s, [&] { for (int c = 0; c < 3; ++c) addNodeAdvection(f.g, f.u.c[c], f.u, f.rhs.c[c], nodeRange(f.g), Limiter::MinMod); });
-  report(s, 15 * 8);
+  loop(s, [&] { addVelocityAdvectionFaces(f.g, f.u, f.rhs, nodeRange(f.g), Limiter::MinMod, scratch()); });
+  report(s, 9 * 8);
 }
-// Level-set advection (cell field by node velocity): psi (1), u (3), RMW rhs (2).
+void BM_NodeAdvectionPointwise(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { for (int c = 0; c < 3; ++c) addNodeAdvection(f.g, f.u.c[c], f.u, f.rhs.c[c], nodeRange(f.g), Limiter::MinMod); });
+  report(s, 9 * 8);
+}
+// Conservative momentum advection (two phases): reads rho, u (3), rhoRef,
+// writes rhsRho, RMW rhs (3 * 2): 12 doubles. Face-flux form, then point-wise.
+void BM_MomentumAdvection(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] {
+    addMomentumAdvectionFaces(f.g, f.mu, f.u, f.mu, f.div, f.rhs, nodeRange(f.g), Limiter::MinMod, scratch());
+  });
+  report(s, 12 * 8);
+}
+void BM_MomentumAdvectionPointwise(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { addMomentumAdvection(f.g, f.mu, f.u, f.mu, f.div, f.rhs, nodeRange(f.g), Limiter::MinMod); });
+  report(s, 12 * 8);
+}
+// Level-set advection, one RK2 stage as the step runs it (advanceCellAdvection,
+// face-flux form, update fused): reads psi, old, u (3), writes psi: 6 doubles.
+// Point-wise beside it: zero rhs, addCellAdvection, update (same byte count).
 void BM_LevelSetAdvection(benchmark::State& s) {
   auto& f = fx();
-  loop(s, [&] { addCellAdvection(f.g, f.psi, f.u, f.rhsCell, cellRange(f.g), Limiter::MinMod); });
+  loop(s, [&] { advanceCellAdvection(f.g, f.psi1, f.old, f.u, cellRange(f.g), Limiter::MinMod, 1e-6, 0.5, false, scratch()); });
+  report(s, 6 * 8);
+}
+void BM_LevelSetAdvectionPointwise(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] {
+    Field q = f.psi1, o = f.old, r = f.rhsCell;
+    const Range3 cells = cellRange(f.g);
+    Kokkos::deep_copy(r, 0.0);
+    addCellAdvection(f.g, q, f.u, r, cells, Limiter::MinMod);
+    Kokkos::parallel_for(
+        "bench_ls_rk2", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          q(i, j, k) = 0.5 * o(i, j, k) + 0.5 * (q(i, j, k) + 1e-6 * r(i, j, k));
+        });
+  });
   report(s, 6 * 8);
 }
 // --- stress ---
@@ -151,9 +195,21 @@ void BM_ElasticAddStress(benchmark::State& s) {
   report(s, 19 * 8 + 4, f.nGrown);
 }
 // Stress advection, one SSP-RK2 stage of 6 components over the band's box, as
-// effects/elasticity/advect.cpp: per component zero r (1), addCellAdvection (6),
-// q = (1 - a) o + a (q + dt r) (4): 6 * 11 doubles per box cell.
+// effects/elasticity/advect.cpp runs it (advanceCellAdvection per component, face fluxes,
+// update fused): reads q (6), o (6), u (3), writes q (6): 21 doubles per box cell.
 void BM_ElasticStressAdvection(benchmark::State& s) {
+  auto& f = fx();
+  const Range3 box = elastic::listBox(f.g, f.owned, f.nOwned);
+  loop(s, [&] {
+    for (int c = 0; c < 6; ++c) {
+      advanceCellAdvection(f.g, f.tauS.c[c], f.tau.c[c], f.u, box, Limiter::MinMod, 1e-6, 0.5, false, scratch());
+    }
+  });
+  report(s, 21 * 8, double(box.size()));
+}
+// The point-wise form it replaced: per component zero r, addCellAdvection,
+// update (same 21-double count, for the ratio).
+void BM_ElasticStressAdvectionPointwise(benchmark::State& s) {
   auto& f = fx();
   const Range3 box = elastic::listBox(f.g, f.owned, f.nOwned);
   loop(s, [&] {
@@ -167,7 +223,7 @@ void BM_ElasticStressAdvection(benchmark::State& s) {
           });
     }
   });
-  report(s, 66 * 8, double(box.size()));
+  report(s, 21 * 8, double(box.size()));
 }
 // --- reinit (band |psi| < 6 h around the sphere) ---
 // One Eikonal RK stage: list, flags (4 B each), sgn, in, base, out (8 B each).
@@ -264,12 +320,17 @@ void registerAll(bool wall) {
     return b;
   };
   add("NodeAdvection", BM_NodeAdvection);
+  add("NodeAdvectionPointwise", BM_NodeAdvectionPointwise);
+  add("MomentumAdvection", BM_MomentumAdvection);
+  add("MomentumAdvectionPointwise", BM_MomentumAdvectionPointwise);
   add("LevelSetAdvection", BM_LevelSetAdvection);
+  add("LevelSetAdvectionPointwise", BM_LevelSetAdvectionPointwise);
   add("ViscousStress", BM_ViscousStress);
   add("StressDivergence", BM_StressDivergence);
   add("ElasticJaumann", BM_ElasticJaumann);
   add("ElasticAddStress", BM_ElasticAddStress);
   add("ElasticStressAdvection", BM_ElasticStressAdvection);
+  add("ElasticStressAdvectionPointwise", BM_ElasticStressAdvectionPointwise);
   add("ReinitStage", BM_ReinitStage);
   add("ReinitIteration", BM_ReinitIteration);
   add("Divergence", BM_Divergence);
@@ -294,5 +355,6 @@ int main(int argc, char** argv) {
   benchmark::Shutdown();
   if (gFixture) freeGrid(gFixture->g);
   delete gFixture;
+  delete gScratch;
   return 0;
 }

@@ -106,6 +106,17 @@ NullSpace::NullSpace(const GridGeom& G, const CellRows& rows, int nrows, MPI_Com
 }
 
 void NullSpace::analyze(const RowVector& v, double* s) const {
+  if (constantOnly_) { // the 7-point operator's case: one plain sum, same order as below
+    auto ident = ident_;
+    double sum = 0;
+    Kokkos::parallel_reduce(
+        "nullspace_sum", Kokkos::RangePolicy<ExecSpace>(0, nrows_),
+        KOKKOS_LAMBDA(int r, double& acc) { acc += ident(r) ? 0.0 : v(r); }, sum);
+    MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm_);
+    std::fill(s, s + nb_, 0.0);
+    s[0] = sum;
+    return;
+  }
   AnalyzeFunctor f{{(unsigned)nb_}, Basis{G_, rows_, off_[0], off_[1], off_[2]}, v, ident_};
   Kokkos::parallel_reduce("nullspace_analyze", Kokkos::RangePolicy<ExecSpace>(0, nrows_), f, s);
   MPI_Allreduce(MPI_IN_PLACE, s, nb_, MPI_DOUBLE, MPI_SUM, comm_);
@@ -115,9 +126,19 @@ void NullSpace::synthesize(const double* a, const RowVector& v, bool subtract) c
   auto ha = Kokkos::create_mirror_view(coef_);
   for (int m = 0; m < nb_; ++m) ha(m) = a[m];
   Kokkos::deep_copy(coef_, ha);
+  auto ident = ident_;
+  if (constantOnly_) { // the other coefficients are zero (remove())
+    const double c0 = a[0];
+    Kokkos::parallel_for(
+        "nullspace_synthesize_constant", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
+          const double w = ident(r) ? 0.0 : c0;
+          v(r) = subtract ? v(r) - w : w;
+        });
+    Kokkos::fence();
+    return;
+  }
   const Basis B{G_, rows_, off_[0], off_[1], off_[2]};
   auto c = coef_;
-  auto ident = ident_;
   Kokkos::parallel_for(
       "nullspace_synthesize", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
         int idx[4];
@@ -145,6 +166,7 @@ double NullSpace::norm2(const RowVector& v) const {
 }
 
 void NullSpace::rebuild(const RowFlags& ident, const Apply& apply, double scale) {
+  constantOnly_ = false; // the candidate tests below synthesize general modes
   ident_ = ident;
   const int nb = nb_;
   // Gram of the basis, Gm = M^T M: each live row is in 4 basis modes.
@@ -235,6 +257,7 @@ void NullSpace::rebuild(const RowFlags& ident, const Apply& apply, double scale)
   const int nk = kept_;
   Z_.clear();
   dim_ = 0;
+  constantOnly_ = false;
   if (nk == 0) return;
   std::vector<double> GC((size_t)nb * nk, 0.0), H((size_t)nk * nk);
   for (int k = 0; k < nk; ++k)
@@ -265,6 +288,9 @@ void NullSpace::rebuild(const RowFlags& ident, const Apply& apply, double scale)
     Z_.insert(Z_.end(), z.begin(), z.end());
     ++dim_;
   }
+  constantOnly_ = true;
+  for (int t = 0; t < dim_; ++t)
+    for (int i = 1; i < nb; ++i) constantOnly_ = constantOnly_ && Z_[(size_t)t * nb + i] == 0.0;
 }
 
 double NullSpace::remove(const RowVector& v) const {

@@ -91,6 +91,7 @@ class NullSpace {
   MPI_Comm comm_;
   RowFlags ident_;
   int dim_ = 0, kept_ = 0;
+  bool constantOnly_ = false;             // Z is zero but for the constant: plain sums do
   std::vector<double> Z_;                 // nb x dim, column-major
   Kokkos::View<double*, MemSpace> coef_;  // a = Z Z^T M^T v on the device
   mutable std::vector<double> s_;         // host work, nb

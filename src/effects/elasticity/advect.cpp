@@ -10,6 +10,7 @@
 #include "core/boundary.hpp"
 #include "effects/elasticity/elasticity.hpp"
 #include "kernels/extension.hpp"
+#include "kernels/advection_faces.hpp"
 #include "kernels/levelset.hpp"
 
 namespace voigt {
@@ -32,9 +33,7 @@ void Elasticity::advect(State& st) {
   VecField u = st.fields.vector("velocity");
   Field psi = st.fields.scalar("psi");
   VecField on = st.fields.vector("solid_stress_old"), os = st.fields.vector("solid_stress_old_shear");
-  VecField rn = st.fields.vector("solid_stress_rhs"), rs = st.fields.vector("solid_stress_rhs_shear");
-  const Field q0[6] = {on.c[0], on.c[1], on.c[2], os.c[0], os.c[1], os.c[2]};
-  const Field rh[6] = {rn.c[0], rn.c[1], rn.c[2], rs.c[0], rs.c[1], rs.c[2]};
+  const Field o[6] = {on.c[0], on.c[1], on.c[2], os.c[0], os.c[1], os.c[2]};
   const Range3 box = elastic::listBox(g, owned_, nOwned_);
   const bool any = nOwned_ > 0;
   const double dt = st.dt;
@@ -42,24 +41,9 @@ void Elasticity::advect(State& st) {
   for (int stage = 0; stage < 2; ++stage) {
     refreshStress(st); // collective: every rank, band or not
     if (!any) continue;
-    for (int c = 0; c < 6; ++c) {
-      Field q = t.c[c], o = q0[c], r = rh[c];
-      if (stage == 0)
-        Kokkos::parallel_for(
-            "elastic_rk2_init", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-              o(i, j, k) = q(i, j, k);
-              r(i, j, k) = 0;
-            });
-      else
-        Kokkos::parallel_for(
-            "elastic_rk2_zero", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) { r(i, j, k) = 0; });
-      addCellAdvection(g, q, u, r, box, limiter_);
-      const double a = stage == 0 ? 1.0 : 0.5;
-      Kokkos::parallel_for(
-          "elastic_rk2", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-            q(i, j, k) = (1 - a) * o(i, j, k) + a * (q(i, j, k) + dt * r(i, j, k));
-          });
-    }
+    // Face fluxes once each, RK update fused (kernels/advection_faces.hpp).
+    for (int c = 0; c < 6; ++c)
+      advanceCellAdvection(g, t.c[c], o[c], u, box, limiter_, dt, stage == 0 ? 1.0 : 0.5, stage == 0, flux_);
   }
   // tau_S = 0 outside the band: in the box, and where the band was last step.
   const double thr = threshold_;

@@ -92,6 +92,7 @@ class Elasticity : public Effect {
   double tau0_[6] = {0, 0, 0, 0, 0, 0};
   double bandCells_ = 3, kappa_ = 0, threshold_ = 0, cfl_ = 0.5, hmin_ = 1;
   Limiter limiter_ = Limiter::MinMod;
+  FluxScratch flux_; // face fluxes of the transport (kernels/advection_faces.hpp)
   std::string side_ = "integrate"; // fluid_side (header)
   bool extend_ = false;            // extend or blend: cells with psi <= below_ are extended
   double below_ = 0;               // extend: 0; blend: -kappa

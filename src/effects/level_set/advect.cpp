@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "effects/level_set/level_set.hpp"
+#include "kernels/advection_faces.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/reductions.hpp"
 
@@ -15,20 +16,14 @@ namespace voigt {
 void LevelSet::advect(State& st) {
   const Grid& g = st.grid;
   const Range3 cells = cellRange(g);
-  Field psi = st.fields.scalar("psi"), old = st.fields.scalar("psi_old"), rhs = st.fields.scalar("psi_rhs");
+  Field psi = st.fields.scalar("psi"), old = st.fields.scalar("psi_old");
   VecField u = st.fields.vector("velocity");
   st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
   const double dt = st.dt;
   Kokkos::deep_copy(old, psi);
   for (int stage = 0; stage < 2; ++stage) {
     refreshGhosts(st, psi);
-    Kokkos::deep_copy(rhs, 0.0);
-    addCellAdvection(g, psi, u, rhs, cells, limiter_);
-    const double a = stage == 0 ? 1.0 : 0.5;
-    Kokkos::parallel_for(
-        "level_set_rk2", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-          psi(i, j, k) = (1 - a) * old(i, j, k) + a * (psi(i, j, k) + dt * rhs(i, j, k));
-        });
+    advanceCellAdvection(g, psi, old, u, cells, limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
   }
   refreshGhosts(st, psi);
 }

@@ -41,6 +41,7 @@ class LevelSet : public Effect {
   bool fastMarching_ = true;
   ShapeProgram shape_;
   Limiter limiter_ = Limiter::MinMod;
+  FluxScratch flux_; // face fluxes of the transport (kernels/advection_faces.hpp)
   FastMarchingStats fm_;
   double volume0_ = 0, volume_ = 0, sharpVolume0_ = 0, sharpVolume_ = 0, area_ = 0, driftMax_ = 0;
 };

@@ -31,10 +31,10 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
   refreshGhosts(st, u);
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs.c[c], 0.0);
   if (rho)
-    addMomentumAdvection(g, *rho, u, st.fields.scalar("momentum_density"), st.fields.scalar("momentum_density_rhs"),
-                         rhs, nodes, limiter_);
+    addMomentumAdvectionFaces(g, *rho, u, st.fields.scalar("momentum_density"),
+                              st.fields.scalar("momentum_density_rhs"), rhs, nodes, limiter_, flux_);
   else
-    for (int c = 0; c < 3; ++c) addNodeAdvection(g, u.c[c], u, rhs.c[c], nodes, limiter_);
+    addVelocityAdvectionFaces(g, u, rhs, nodes, limiter_, flux_);
   st.evalU = u;
   st.evalRhs = rhs;
   p.run(Stage::Stress, st);

@@ -6,6 +6,7 @@
 
 #include "effects/effect.hpp"
 #include "kernels/advection.hpp"
+#include "kernels/advection_faces.hpp"
 #include "kernels/stress.hpp"
 #include "solvers/poisson.hpp"
 
@@ -47,6 +48,7 @@ class NavierStokes : public Effect {
   Limiter limiter_ = Limiter::MinMod;
   bool conservative_ = false; // momentum advection in conservative form
   std::unique_ptr<PoissonSolver> solver_;
+  FluxScratch flux_; // face fluxes of the momentum advection
   Pipeline* pipeline_ = nullptr;
   double pRef_ = 0; // outflow pressure: stored p is relative to it
   bool initialPressureDone_ = false;

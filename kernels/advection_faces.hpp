@@ -1,0 +1,201 @@
+#pragma once
+// Advection kernel family, face-flux form: the schemes of advection.hpp and
+// levelset.hpp (MUSCL + Kurganov-Tadmor, dq/dt = -[div(v q) - q div_h v]) with
+// every face flux computed once, not twice (once by each point beside it), and
+// the face speed shared by all components. One pass per axis fills the faces
+// (FluxScratch), one pass over the points takes the differences in the same
+// order and with the same operations as the point-wise kernels, so the results
+// are bit-identical to them (tests/flow/test_advection_faces.cpp).
+// Face i along an axis lies between points i-1 and i.
+#include "core/field.hpp"
+#include "core/index_space.hpp"
+#include "kernels/advection.hpp"
+
+namespace voigt {
+namespace faces {
+
+// Points [b, e) need faces [b, e] along axis d.
+inline Range3 faceRange(const Range3& r, int d) {
+  Range3 f = r;
+  f.e[d] += 1;
+  return f;
+}
+
+// Face speed of a primary cell face: the mean of its 4 nodes (levelset.hpp's order).
+KOKKOS_INLINE_FUNCTION double cellFaceSpeed(const Field& vd, int d, int i, int j, int k) {
+  if (d == 0) return 0.25 * (vd(i, j, k) + vd(i, j + 1, k) + vd(i, j, k + 1) + vd(i, j + 1, k + 1));
+  if (d == 1) return 0.25 * (vd(i, j, k) + vd(i + 1, j, k) + vd(i, j, k + 1) + vd(i + 1, j, k + 1));
+  return 0.25 * (vd(i, j, k) + vd(i + 1, j, k) + vd(i, j + 1, k) + vd(i + 1, j + 1, k));
+}
+
+} // namespace faces
+
+namespace faces {
+// Momentum face fluxes along axis D (compile-time: the offsets fold into the
+// addressing): slots 5 D + {0: speed, 1: F_rho, 2..4: F_m}.
+template <int D>
+void momentumFaces(const Field& rho, const VecField& v, Range3 nodes, int lim,
+                   const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
+  constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 5 * D;
+  const Field vx = v.c[0], vy = v.c[1], vz = v.c[2], vd = v.c[D];
+  for_each3(
+      "momentum_advection_faces", faceRange(nodes, D), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double a = 0.5 * (vd(i - di, j - dj, k - dk) + vd(i, j, k));
+        double rL, rR, uL, uR;
+        musclStates(lim, rho(i - 2 * di, j - 2 * dj, k - 2 * dk), rho(i - di, j - dj, k - dk), rho(i, j, k),
+                    rho(i + di, j + dj, k + dk), rL, rR);
+        F(i, j, k, s0) = a;
+        F(i, j, k, s0 + 1) = ktFlux(a, rL, rR);
+        musclStates(lim, vx(i - 2 * di, j - 2 * dj, k - 2 * dk), vx(i - di, j - dj, k - dk), vx(i, j, k),
+                    vx(i + di, j + dj, k + dk), uL, uR);
+        F(i, j, k, s0 + 2) = ktFlux(a, rL * uL, rR * uR);
+        musclStates(lim, vy(i - 2 * di, j - 2 * dj, k - 2 * dk), vy(i - di, j - dj, k - dk), vy(i, j, k),
+                    vy(i + di, j + dj, k + dk), uL, uR);
+        F(i, j, k, s0 + 3) = ktFlux(a, rL * uL, rR * uR);
+        musclStates(lim, vz(i - 2 * di, j - 2 * dj, k - 2 * dk), vz(i - di, j - dj, k - dk), vz(i, j, k),
+                    vz(i + di, j + dj, k + dk), uL, uR);
+        F(i, j, k, s0 + 4) = ktFlux(a, rL * uL, rR * uR);
+      });
+}
+// One axis of the momentum face differences, unrolled (a runtime axis or
+// component index keeps the compiler from holding the views in registers).
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION void momentumSum(const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F, int i,
+                                             int j, int k, double r0, double u0, double u1, double u2, double hinv,
+                                             double& tr, double* tm) {
+  constexpr int s0 = 5 * D;
+  const int ip = i + (D == 0), jp = j + (D == 1), kp = k + (D == 2);
+  const double ap = F(ip, jp, kp, s0), am = F(i, j, k, s0);
+  tr -= (F(ip, jp, kp, s0 + 1) - F(i, j, k, s0 + 1) - r0 * (ap - am)) * hinv;
+  tm[0] -= (F(ip, jp, kp, s0 + 2) - F(i, j, k, s0 + 2) - r0 * u0 * (ap - am)) * hinv;
+  tm[1] -= (F(ip, jp, kp, s0 + 3) - F(i, j, k, s0 + 3) - r0 * u1 * (ap - am)) * hinv;
+  tm[2] -= (F(ip, jp, kp, s0 + 4) - F(i, j, k, s0 + 4) - r0 * u2 * (ap - am)) * hinv;
+}
+} // namespace faces
+
+// Conservative momentum advection, as addMomentumAdvection (advection.hpp).
+inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const VecField& v, const Field& rhoRef,
+                                      const Field& rhsRho, const VecField& rhs, Range3 nodes, Limiter limiter,
+                                      FluxScratch& scratch) {
+  const int lim = static_cast<int>(limiter);
+  scratch.reserve(g, 15);
+  auto F = scratch.F;
+  auto vx = v.c[0], vy = v.c[1], vz = v.c[2];
+  faces::momentumFaces<0>(rho, v, nodes, lim, F);
+  faces::momentumFaces<1>(rho, v, nodes, lim, F);
+  faces::momentumFaces<2>(rho, v, nodes, lim, F);
+  const double ih0 = 1 / g.h[0], ih1 = 1 / g.h[1], ih2 = 1 / g.h[2];
+  auto rx = rhs.c[0], ry = rhs.c[1], rz = rhs.c[2];
+  for_each3(
+      "momentum_advection_sum", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+        const double r0 = rho(i, j, k);
+        const double u0 = vx(i, j, k), u1 = vy(i, j, k), u2 = vz(i, j, k);
+        double tr = 0, tm[3] = {0, 0, 0};
+        faces::momentumSum<0>(F, i, j, k, r0, u0, u1, u2, ih0, tr, tm);
+        faces::momentumSum<1>(F, i, j, k, r0, u0, u1, u2, ih1, tr, tm);
+        faces::momentumSum<2>(F, i, j, k, r0, u0, u1, u2, ih2, tr, tm);
+        rhsRho(i, j, k) = tr;
+        const double inv = 1 / rhoRef(i, j, k);
+        rx(i, j, k) += tm[0] * inv;
+        ry(i, j, k) += tm[1] * inv;
+        rz(i, j, k) += tm[2] * inv;
+      });
+}
+
+// rhs.c[c] += -(advection of v.c[c] by v): the three calls of addNodeAdvection,
+// one component at a time (a kernel per component beats one over all three,
+// perf/README.md). Slots per axis d: 2 d + {0: speed, 1: F}.
+namespace faces {
+template <int D>
+void nodeFaces(const Field& q, const Field& vd, Range3 nodes, int lim,
+               const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
+  constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 2 * D;
+  for_each3(
+      "node_advection_faces", faceRange(nodes, D), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double a = 0.5 * (vd(i - di, j - dj, k - dk) + vd(i, j, k));
+        F(i, j, k, s0) = a;
+        F(i, j, k, s0 + 1) = centralFlux(lim, q(i - 2 * di, j - 2 * dj, k - 2 * dk), q(i - di, j - dj, k - dk),
+                                         q(i, j, k), q(i + di, j + dj, k + dk), a);
+      });
+}
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION void scalarSum(const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F, int i,
+                                           int j, int k, double q0, double h, double& tend) {
+  constexpr int s0 = 2 * D;
+  const int ip = i + (D == 0), jp = j + (D == 1), kp = k + (D == 2);
+  const double ap = F(ip, jp, kp, s0), am = F(i, j, k, s0);
+  tend -= (F(ip, jp, kp, s0 + 1) - F(i, j, k, s0 + 1) - q0 * (ap - am)) / h;
+}
+} // namespace faces
+
+inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField& v, const Field& rhs, Range3 nodes,
+                                  Limiter limiter, FluxScratch& scratch) {
+  const int lim = static_cast<int>(limiter);
+  scratch.reserve(g, 6);
+  auto F = scratch.F;
+  faces::nodeFaces<0>(q, v.c[0], nodes, lim, F);
+  faces::nodeFaces<1>(q, v.c[1], nodes, lim, F);
+  faces::nodeFaces<2>(q, v.c[2], nodes, lim, F);
+  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  for_each3(
+      "node_advection_sum", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+        const double q0 = q(i, j, k);
+        double tend = 0;
+        faces::scalarSum<0>(F, i, j, k, q0, h0, tend);
+        faces::scalarSum<1>(F, i, j, k, q0, h1, tend);
+        faces::scalarSum<2>(F, i, j, k, q0, h2, tend);
+        rhs(i, j, k) += tend;
+      });
+}
+
+inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const VecField& rhs, Range3 nodes,
+                                      Limiter limiter, FluxScratch& scratch) {
+  for (int c = 0; c < 3; ++c) addNodeAdvectionFaces(g, v.c[c], v, rhs.c[c], nodes, limiter, scratch);
+}
+
+// One cell field advected by the node velocity (addCellAdvection of
+// levelset.hpp) and advanced by one SSP-RK2 (Heun) stage in the same pass, as
+// the callers did with a zeroed rhs r:
+//   q <- (1 - a) o + a (q + dt r),   a = 1 (stage 1) or 1/2 (stage 2);
+// storeOld: stage 1 also sets o = q^n. Several fields: one call each (faster
+// than one kernel over all of them, perf/README.md). Slots: 2 d + {0: speed, 1: F}.
+namespace faces {
+template <int D>
+void cellFaces(const Field& q, const Field& vd, Range3 cells, int lim,
+               const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
+  constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 2 * D;
+  for_each3(
+      "cell_advection_faces", faceRange(cells, D), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double a = cellFaceSpeed(vd, D, i, j, k);
+        F(i, j, k, s0) = a;
+        F(i, j, k, s0 + 1) = centralFlux(lim, q(i - 2 * di, j - 2 * dj, k - 2 * dk), q(i - di, j - dj, k - dk),
+                                         q(i, j, k), q(i + di, j + dj, k + dk), a);
+      });
+}
+} // namespace faces
+
+inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, const VecField& v, Range3 cells,
+                                 Limiter limiter, double dt, double a, bool storeOld, FluxScratch& scratch) {
+  const int lim = static_cast<int>(limiter);
+  scratch.reserve(g, 6);
+  auto F = scratch.F;
+  faces::cellFaces<0>(q, v.c[0], cells, lim, F);
+  faces::cellFaces<1>(q, v.c[1], cells, lim, F);
+  faces::cellFaces<2>(q, v.c[2], cells, lim, F);
+  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  for_each3(
+      "cell_advection_rk2", cells, KOKKOS_LAMBDA(int i, int j, int k) {
+        const double q0 = q(i, j, k);
+        double tend = 0;
+        faces::scalarSum<0>(F, i, j, k, q0, h0, tend);
+        faces::scalarSum<1>(F, i, j, k, q0, h1, tend);
+        faces::scalarSum<2>(F, i, j, k, q0, h2, tend);
+        double r = 0;
+        r += tend;
+        if (storeOld) o(i, j, k) = q0;
+        const double old = storeOld ? q0 : o(i, j, k);
+        q(i, j, k) = (1 - a) * old + a * (q0 + dt * r);
+      });
+}
+
+} // namespace voigt
