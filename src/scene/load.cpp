@@ -240,6 +240,8 @@ void readSettings(const Section& top, Scene& sc) {
   P.sweeps = int(p.integer("sweeps", P.sweeps, 1, 100));
   P.multigridReuse = p.choice("multigrid_reuse", P.multigridReuse, {"none", "S", "tP", "RP", "RAP"});
   P.multigridRefresh = int(p.integer("multigrid_refresh", P.multigridRefresh, 0, 1000000));
+  P.multigridSmoother = p.choice("multigrid_smoother", P.multigridSmoother, {"sgs", "chebyshev"});
+  P.chebyshevDegree = int(p.integer("chebyshev_degree", P.chebyshevDegree, 1, 20));
   p.finish();
 
   Section a = top.section("advection");

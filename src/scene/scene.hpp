@@ -64,6 +64,11 @@ struct ProjectionCfg {
   // Multigrid with reuse: a full rebuild every N coefficient updates (0: only when the
   // zero pattern changes). Useful with RAP, whose iterations grow as the density moves.
   int multigridRefresh = 0;
+  // Multigrid only: the fine-level smoother. sgs: MueLu's default relaxation (symmetric
+  // Gauss-Seidel, sequential sweeps); chebyshev: Ifpack2 Chebyshev of this degree (matrix-
+  // vector products only: runs on threads and GPUs; perf/README.md compares the two).
+  std::string multigridSmoother = "sgs";
+  int chebyshevDegree = 2;
 };
 
 struct AdvectionCfg {

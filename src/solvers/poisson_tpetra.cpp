@@ -102,6 +102,10 @@ class TpetraPoisson final : public PoissonSolver {
         cp.set("relaxation: sweeps", cfg_.sweeps);
         cp.set("relaxation: damping factor", cfg_.damping);
         if (cfg_.multigridReuse != "none") p.set("reuse: type", cfg_.multigridReuse);
+        if (cfg_.multigridSmoother == "chebyshev") {
+          p.set("smoother: type", "CHEBYSHEV");
+          p.sublist("smoother: params").set("chebyshev: degree", cfg_.chebyshevDegree);
+        }
         muelu_ = MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Operator>(A_), p);
         problem_->setLeftPrec(Teuchos::rcp(new ProjectedPrec(muelu_, ns_.get())));
         sinceBuild_ = 0;
@@ -310,6 +314,9 @@ class TpetraPoisson final : public PoissonSolver {
     const std::string& mr = cfg_.multigridReuse;
     if (mr != "none" && mr != "S" && mr != "tP" && mr != "RP" && mr != "RAP")
       throw std::invalid_argument("projection.multigrid_reuse: unknown '" + mr + "' (none | S | tP | RP | RAP)");
+    if (cfg_.multigridSmoother != "sgs" && cfg_.multigridSmoother != "chebyshev")
+      throw std::invalid_argument("projection.multigrid_smoother: unknown '" + cfg_.multigridSmoother +
+                                  "' (sgs | chebyshev)");
     if (cfg_.multigridRefresh < 0)
       throw std::invalid_argument("projection.multigrid_refresh: must be >= 0");
   }

@@ -55,5 +55,6 @@ class NavierStokes : public Effect {
 };
 
 SymTensorField stressField(const FieldStore& f);
+std::string solverSummary(const ProjectionCfg& P);
 
 } // namespace voigt

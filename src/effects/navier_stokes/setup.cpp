@@ -1,4 +1,5 @@
 // navier_stokes set-up: fields, boundary masks, initial velocity and pressure.
+#include <cstdio>
 #include <algorithm>
 #include <cmath>
 
@@ -132,8 +133,24 @@ void NavierStokes::registerTasks(Pipeline& p) {
   p.add(Stage::Projection, name(), std::string("incremental pressure correction, ") +
         (scene_->projection.op == ProjectionCfg::Op::Exact ? "exact D(1/rho)G, 27-point"
                                                            : "approximate 7-point Laplacian") +
-        ", CG + " + scene_->projection.preconditioner,
+        ", CG + " + solverSummary(scene_->projection),
         [this](State& st) { project(st); });
+}
+
+// The solver settings as `voigt check` prints them: every knob that changes the cost.
+std::string solverSummary(const ProjectionCfg& P) {
+  std::string s = P.preconditioner;
+  if (P.preconditioner == "multigrid") {
+    s += " (reuse " + P.multigridReuse + ", refresh " + std::to_string(P.multigridRefresh) + ", smoother " +
+         P.multigridSmoother;
+    if (P.multigridSmoother == "chebyshev") s += " degree " + std::to_string(P.chebyshevDegree);
+    s += ")";
+  } else if (P.preconditioner != "none") {
+    s += " (" + std::to_string(P.sweeps) + " sweep" + (P.sweeps > 1 ? "s" : "") + ")";
+  }
+  char tol[32];
+  std::snprintf(tol, sizeof tol, "%g", P.tolerance);
+  return s + ", tolerance " + tol + ", at most " + std::to_string(P.maxIterations) + " iterations";
 }
 
 DtLimit NavierStokes::dtLimit(const State& st) const {
