@@ -59,14 +59,15 @@ void Halo::exchange(const std::vector<Field>& fields) {
       sendHi_ = Buf("halo_sendHi", total);
       recvLo_ = Buf("halo_recvLo", total);
       recvHi_ = Buf("halo_recvHi", total);
+      hsLo_ = Kokkos::create_mirror_view(sendLo_), hsHi_ = Kokkos::create_mirror_view(sendHi_);
+      hrLo_ = Kokkos::create_mirror_view(recvLo_), hrHi_ = Kokkos::create_mirror_view(recvHi_);
     }
     for (size_t f = 0; f < fields.size(); ++f) {
       pack(fields[f], sLo, sendLo_, f * per);
       pack(fields[f], sHi, sendHi_, f * per);
     }
     Kokkos::fence();
-    auto hsLo = Kokkos::create_mirror_view(sendLo_), hsHi = Kokkos::create_mirror_view(sendHi_);
-    auto hrLo = Kokkos::create_mirror_view(recvLo_), hrHi = Kokkos::create_mirror_view(recvHi_);
+    auto hsLo = hsLo_, hsHi = hsHi_, hrLo = hrLo_, hrHi = hrHi_;
     Kokkos::deep_copy(hsLo, sendLo_);
     Kokkos::deep_copy(hsHi, sendHi_);
     // Low slab goes down and fills the neighbour's high ghosts; and vice versa.

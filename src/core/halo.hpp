@@ -24,7 +24,12 @@ class Halo {
 
  private:
   const Grid* g_;
-  Kokkos::View<double*, MemSpace> sendLo_, sendHi_, recvLo_, recvHi_;
+  // Message buffers, kept across calls and grown on demand, and their host
+  // mirrors for MPI (the same memory on a host backend; pinned-able staging on a
+  // device, created once, not per exchange).
+  using Buf = Kokkos::View<double*, MemSpace>;
+  Buf sendLo_, sendHi_, recvLo_, recvHi_;
+  Buf::HostMirror hsLo_, hsHi_, hrLo_, hrHi_;
 };
 
 } // namespace voigt
