@@ -1,8 +1,9 @@
 #pragma once
 // Advection kernel family, face-flux form: the schemes of advection.hpp and
 // levelset.hpp (MUSCL + Kurganov-Tadmor, dq/dt = -[div(v q) - q div_h v]) with
-// every face flux computed once, not twice (once by each point beside it), and
-// the face speed shared by all components. One pass per axis fills the faces
+// every face flux computed once, not twice (once by each point beside it). Axes
+// are template parameters and each field has its own kernels (a runtime axis or
+// component index was slower, perf/README.md). One pass per axis fills the faces
 // (FluxScratch), one pass over the points takes the differences in the same
 // order and with the same operations as the point-wise kernels, so the results
 // are bit-identical to them (tests/flow/test_advection_faces.cpp).
@@ -28,9 +29,6 @@ KOKKOS_INLINE_FUNCTION double cellFaceSpeed(const Field& vd, int d, int i, int j
   return 0.25 * (vd(i, j, k) + vd(i + 1, j, k) + vd(i, j + 1, k) + vd(i + 1, j + 1, k));
 }
 
-} // namespace faces
-
-namespace faces {
 // Momentum face fluxes along axis D (compile-time: the offsets fold into the
 // addressing): slots 5 D + {0: speed, 1: F_rho, 2..4: F_m}.
 template <int D>
@@ -106,13 +104,16 @@ inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const Vec
 // one component at a time (a kernel per component beats one over all three,
 // perf/README.md). Slots per axis d: 2 d + {0: speed, 1: F}.
 namespace faces {
-template <int D>
-void nodeFaces(const Field& q, const Field& vd, Range3 nodes, int lim,
-               const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
+// Face fluxes of one field q along axis D. Node fields (dual cells): the face
+// speed is the mean of the two nodes; cell fields: the mean of the face's 4 nodes.
+template <int D, bool CellField>
+void scalarFaces(const Field& q, const Field& vd, Range3 r, int lim,
+                 const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
   constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 2 * D;
   for_each3(
-      "node_advection_faces", faceRange(nodes, D), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double a = 0.5 * (vd(i - di, j - dj, k - dk) + vd(i, j, k));
+      CellField ? "cell_advection_faces" : "node_advection_faces", faceRange(r, D),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        const double a = CellField ? cellFaceSpeed(vd, D, i, j, k) : 0.5 * (vd(i - di, j - dj, k - dk) + vd(i, j, k));
         F(i, j, k, s0) = a;
         F(i, j, k, s0 + 1) = centralFlux(lim, q(i - 2 * di, j - 2 * dj, k - 2 * dk), q(i - di, j - dj, k - dk),
                                          q(i, j, k), q(i + di, j + dj, k + dk), a);
@@ -133,9 +134,9 @@ inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField&
   const int lim = static_cast<int>(limiter);
   scratch.reserve(g, 6);
   auto F = scratch.F;
-  faces::nodeFaces<0>(q, v.c[0], nodes, lim, F);
-  faces::nodeFaces<1>(q, v.c[1], nodes, lim, F);
-  faces::nodeFaces<2>(q, v.c[2], nodes, lim, F);
+  faces::scalarFaces<0, false>(q, v.c[0], nodes, lim, F);
+  faces::scalarFaces<1, false>(q, v.c[1], nodes, lim, F);
+  faces::scalarFaces<2, false>(q, v.c[2], nodes, lim, F);
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "node_advection_sum", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
@@ -159,29 +160,14 @@ inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const Ve
 //   q <- (1 - a) o + a (q + dt r),   a = 1 (stage 1) or 1/2 (stage 2);
 // storeOld: stage 1 also sets o = q^n. Several fields: one call each (faster
 // than one kernel over all of them, perf/README.md). Slots: 2 d + {0: speed, 1: F}.
-namespace faces {
-template <int D>
-void cellFaces(const Field& q, const Field& vd, Range3 cells, int lim,
-               const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
-  constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 2 * D;
-  for_each3(
-      "cell_advection_faces", faceRange(cells, D), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double a = cellFaceSpeed(vd, D, i, j, k);
-        F(i, j, k, s0) = a;
-        F(i, j, k, s0 + 1) = centralFlux(lim, q(i - 2 * di, j - 2 * dj, k - 2 * dk), q(i - di, j - dj, k - dk),
-                                         q(i, j, k), q(i + di, j + dj, k + dk), a);
-      });
-}
-} // namespace faces
-
 inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, const VecField& v, Range3 cells,
                                  Limiter limiter, double dt, double a, bool storeOld, FluxScratch& scratch) {
   const int lim = static_cast<int>(limiter);
   scratch.reserve(g, 6);
   auto F = scratch.F;
-  faces::cellFaces<0>(q, v.c[0], cells, lim, F);
-  faces::cellFaces<1>(q, v.c[1], cells, lim, F);
-  faces::cellFaces<2>(q, v.c[2], cells, lim, F);
+  faces::scalarFaces<0, true>(q, v.c[0], cells, lim, F);
+  faces::scalarFaces<1, true>(q, v.c[1], cells, lim, F);
+  faces::scalarFaces<2, true>(q, v.c[2], cells, lim, F);
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "cell_advection_rk2", cells, KOKKOS_LAMBDA(int i, int j, int k) {
@@ -190,7 +176,7 @@ inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, 
         faces::scalarSum<0>(F, i, j, k, q0, h0, tend);
         faces::scalarSum<1>(F, i, j, k, q0, h1, tend);
         faces::scalarSum<2>(F, i, j, k, q0, h2, tend);
-        double r = 0;
+        double r = 0; // as the zeroed rhs the callers used: 0 + (-0) is +0, bit for bit
         r += tend;
         if (storeOld) o(i, j, k) = q0;
         const double old = storeOld ? q0 : o(i, j, k);

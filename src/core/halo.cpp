@@ -67,16 +67,15 @@ void Halo::exchange(const std::vector<Field>& fields) {
       pack(fields[f], sHi, sendHi_, f * per);
     }
     Kokkos::fence();
-    auto hsLo = hsLo_, hsHi = hsHi_, hrLo = hrLo_, hrHi = hrHi_;
-    Kokkos::deep_copy(hsLo, sendLo_);
-    Kokkos::deep_copy(hsHi, sendHi_);
+    Kokkos::deep_copy(hsLo_, sendLo_);
+    Kokkos::deep_copy(hsHi_, sendHi_);
     // Low slab goes down and fills the neighbour's high ghosts; and vice versa.
-    MPI_Sendrecv(hsLo.data(), (int)total, MPI_DOUBLE, g.nbrLo[d], 10 + d, hrHi.data(), (int)total,
+    MPI_Sendrecv(hsLo_.data(), (int)total, MPI_DOUBLE, g.nbrLo[d], 10 + d, hrHi_.data(), (int)total,
                  MPI_DOUBLE, g.nbrHi[d], 10 + d, g.comm, MPI_STATUS_IGNORE);
-    MPI_Sendrecv(hsHi.data(), (int)total, MPI_DOUBLE, g.nbrHi[d], 20 + d, hrLo.data(), (int)total,
+    MPI_Sendrecv(hsHi_.data(), (int)total, MPI_DOUBLE, g.nbrHi[d], 20 + d, hrLo_.data(), (int)total,
                  MPI_DOUBLE, g.nbrLo[d], 20 + d, g.comm, MPI_STATUS_IGNORE);
-    Kokkos::deep_copy(recvLo_, hrLo);
-    Kokkos::deep_copy(recvHi_, hrHi);
+    Kokkos::deep_copy(recvLo_, hrLo_);
+    Kokkos::deep_copy(recvHi_, hrHi_);
     for (size_t f = 0; f < fields.size(); ++f) {
       if (g.nbrLo[d] != MPI_PROC_NULL) unpack(fields[f], rLo, recvLo_, f * per);
       if (g.nbrHi[d] != MPI_PROC_NULL) unpack(fields[f], rHi, recvHi_, f * per);

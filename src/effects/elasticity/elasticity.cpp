@@ -73,8 +73,7 @@ void Elasticity::declareFields(FieldStore& f) const {
   const std::string me = name();
   f.declare("psi", Centring::Cell, 1, me);
   f.declare("velocity", Centring::Node, 3, me);
-  for (const char* n : {"solid_stress", "solid_stress_shear", "solid_stress_old", "solid_stress_old_shear",
-                        "solid_stress_rhs", "solid_stress_rhs_shear"})
+  for (const char* n : {"solid_stress", "solid_stress_shear", "solid_stress_old", "solid_stress_old_shear"})
     f.declare(n, Centring::Cell, 3, me);
   f.declare("S2", Centring::Cell, 1, me);
   f.declare("log10_S2", Centring::Cell, 1, me);

@@ -36,7 +36,6 @@ void LevelSet::configure(const Scene& s) {
 void LevelSet::declareFields(FieldStore& f) const {
   f.declare("psi", Centring::Cell, 1, name());
   f.declare("psi_old", Centring::Cell, 1, name());
-  f.declare("psi_rhs", Centring::Cell, 1, name());
 }
 
 void LevelSet::refreshGhosts(State& st, const Field& f) const {
