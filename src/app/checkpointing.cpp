@@ -182,6 +182,7 @@ std::string Simulation::writeCheckpoint(const FieldStore& fields, const nlohmann
   if (!checkpointer_) return "";
   const std::string path = checkpointer_->write(meta.at("step").get<long>(), fields, meta);
   lastCheckpointStep_ = meta.at("step").get<long>();
+  lastCheckpointWall_ = MPI_Wtime();
   checkpointsWritten_ += 1;
   checkpointSeconds_ += checkpointer_->lastSeconds();
   checkpointBytes_ = checkpointer_->lastBytes();
@@ -206,6 +207,11 @@ void Simulation::writeSummary(const RunResult& r, const std::string& stop) {
   if (opt_.outDir.empty() || st_.grid.rank != 0) return;
   nlohmann::json j = summary(r);
   if (!stop.empty()) j["stopped"] = stop;
+  // finished, or why not; stopped by a signal or the wall limit, it continues with --restart.
+  const bool blowUp = !stop.empty() && !r.signal && !r.wallLimit;
+  j["state"] = stop.empty() ? "finished" : r.wallLimit ? "wall_limit" : r.signal ? "stopped" : "blow_up";
+  j["resumable"] = !stop.empty() && !blowUp && !r.checkpoint.empty();
+  if (opt_.wallLimit > 0) j["wall_limit_seconds"] = opt_.wallLimit;
   const std::string path = opt_.outDir + "/summary.json", tmp = path + ".tmp";
   std::ofstream os(tmp, std::ios::trunc);
   os << j.dump(2) << "\n";

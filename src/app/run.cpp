@@ -1,9 +1,10 @@
-// Simulation::run: the time loop with output, checkpoints, signals and the
-// blow-up stop (last good state, non-zero exit).
+// Simulation::run: the time loop with output, checkpoints (by steps and by wall time),
+// signals, the wall-clock limit and the blow-up stop (last good state, non-zero exit).
 #include "app/simulation.hpp"
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <climits>
 #include <csignal>
 #include <cmath>
@@ -50,6 +51,21 @@ struct SignalGuard {
     sigaction(SIGTERM, &oldTerm, nullptr);
   }
 };
+// --wall-limit: stop before the next step when it, a checkpoint and a margin might
+// not fit in what is left. Estimates from the slowest recent step (outputs and
+// solver set-ups make some slower) and the last checkpoint write.
+struct WallLimit {
+  double deadline = 0;  // MPI_Wtime; 0 = no limit
+  double margin = 0;
+  double steps[8] = {};
+  int n = 0;
+  void stepTook(double s) { steps[n++ % 8] = s; }
+  bool reached(double now, double checkpointSeconds) const {
+    double step = 0;
+    for (double s : steps) step = std::max(step, s);
+    return deadline > 0 && now + 1.25 * step + 1.5 * checkpointSeconds + margin > deadline;
+  }
+};
 } // namespace
 
 RunResult Simulation::run() {
@@ -87,6 +103,15 @@ RunResult Simulation::run() {
   const bool tty = opt_.progress && isatty(2) && g.rank == 0;
   const double w0 = MPI_Wtime();
   runStart_ = w0;
+  lastCheckpointWall_ = w0;
+  WallLimit wall;
+  if (opt_.wallLimit > 0) {
+    wall.deadline = (opt_.wallStart >= 0 ? opt_.wallStart : w0) + opt_.wallLimit;
+    wall.margin = std::min(60.0, 0.05 * opt_.wallLimit); // summary, MPI_Finalize, clock skew
+  }
+  // Before the first checkpoint its cost is a guess: 100 MB/s for every field.
+  const double ckGuess = 0.5 + double(st_.fields.bytes(g)) * g.size / 1e8;
+  const bool wallChecks = opt_.wallLimit > 0 || (ck_.wallInterval > 0 && checkpointer_);
   const long step0 = st_.step;
   RunResult r;
   auto finish = [&]() {
@@ -115,14 +140,26 @@ RunResult Simulation::run() {
     throw BlowUp(msg);
   };
   while (st_.t < tEnd * (1 - 1e-12) && (maxSteps < 0 || st_.step < maxSteps)) {
-    int sig = gSignal, anySig = 0;
-    if (opt_.handleSignals) {
-      MPI_Allreduce(&sig, &anySig, 1, MPI_INT, MPI_MAX, g.comm);
-      if (anySig) {
-        r.signal = anySig;
-        break;
-      }
+    // One collective per step: a signal on any rank, and rank 0's clock decides the
+    // wall limit and wall-interval checkpoints, so all ranks act at the same step.
+    int flags[3] = {opt_.handleSignals ? int(gSignal) : 0, 0, 0};
+    if (g.rank == 0 && wallChecks) {
+      const double now = MPI_Wtime(), ck = checkpointsWritten_ > 0 ? checkpointer_->lastSeconds() : ckGuess;
+      flags[2] = ck_.wallInterval > 0 && checkpointer_ && now - lastCheckpointWall_ >= ck_.wallInterval;
+      flags[1] = wall.reached(now, flags[2] ? 2 * ck : ck); // a wall-interval checkpoint first
     }
+    if (opt_.handleSignals || wallChecks) MPI_Allreduce(MPI_IN_PLACE, flags, 3, MPI_INT, MPI_MAX, g.comm);
+    if (flags[0]) {
+      r.signal = flags[0];
+      break;
+    }
+    if (flags[1]) {
+      r.wallLimit = true;
+      break;
+    }
+    if (flags[2] && lastCheckpointStep_ != st_.step) r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    else if (flags[2]) lastCheckpointWall_ = MPI_Wtime(); // restarted from this very step
+    const double stepStart = MPI_Wtime();
     const double dt = chooseDt(tEnd, scene_.output.interval > 0 ? nextOutput_ : tEnd);
     if (!std::isfinite(dt) || dt <= 0 || (dt < scene_.time.minDt && dt < tEnd - st_.t)) {
       std::ostringstream os;
@@ -139,6 +176,7 @@ RunResult Simulation::run() {
     }
     writeTimeSeries();
     output(false);
+    wall.stepTook(MPI_Wtime() - stepStart);
     if (ck_.interval > 0 && st_.step % ck_.interval == 0 && checkpointer_)
       r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
     if (tty) {
@@ -149,15 +187,18 @@ RunResult Simulation::run() {
   }
   if (tty) fprintf(stderr, "\n");
   finish();
-  if (r.signal) {
+  if (r.signal || r.wallLimit) {
     if (checkpointer_ && lastCheckpointStep_ != st_.step) r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
     else if (checkpointer_ && r.checkpoint.empty()) r.checkpoint = findCheckpoint(g.comm, opt_.outDir);
-    writeSummary(r, std::string("signal ") + (r.signal == SIGINT ? "SIGINT" : r.signal == SIGTERM ? "SIGTERM" : "?"));
+    finish(); // the wall time with the checkpoint
+    writeSummary(r, r.wallLimit ? std::string("wall_limit")
+                                : std::string("signal ") +
+                                      (r.signal == SIGINT ? "SIGINT" : r.signal == SIGTERM ? "SIGTERM" : "?"));
     return r;
   }
   // A run with checkpoints ends with one, so it can be extended (--restart --end-time ...);
   // before the final forced output, which a longer run would not have made.
-  if (ck_.interval > 0 && checkpointer_ && lastCheckpointStep_ != st_.step)
+  if ((ck_.interval > 0 || ck_.wallInterval > 0) && checkpointer_ && lastCheckpointStep_ != st_.step)
     r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
   if (scene_.output.interval == 0 || outputIndex_ == 0 || nextOutput_ - scene_.output.interval < st_.t - 1e-12)
     output(true);

@@ -79,6 +79,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt)
   for (auto& e : effects_) e->registerTasks(pipeline_);
   const Section c = topSection(scene_, "checkpoint");
   ck_.interval = c.integer("interval", ck_.interval, 0, 1000000000L);
+  ck_.wallInterval = c.number("wall_interval", ck_.wallInterval, Range::nonNegative());
   ck_.keep = int(c.integer("keep", ck_.keep, 1, 1000));
   ck_.lastGood = c.boolean("last_good", ck_.lastGood);
   c.finish();
@@ -105,8 +106,10 @@ std::string Simulation::describe() const {
   const double mb = st_.fields.bytes(g) / 1048576.0;
   os << "fields     " << st_.fields.decls().size() << " declared, " << mb << " MiB per rank, "
      << double(st_.fields.bytes(g)) / g.cellsOwned() << " bytes per cell (incl. ghosts)\n";
-  if (ck_.interval > 0)
-    os << "checkpoint every " << ck_.interval << " steps, keep " << ck_.keep
+  if (ck_.interval > 0 || ck_.wallInterval > 0)
+    os << "checkpoint every " << (ck_.interval > 0 ? std::to_string(ck_.interval) + " steps" : "")
+       << (ck_.interval > 0 && ck_.wallInterval > 0 ? " and every " : "")
+       << (ck_.wallInterval > 0 ? std::to_string(ck_.wallInterval) + " s of wall time" : "") << ", keep " << ck_.keep
        << (ck_.lastGood ? ", last good step kept in memory (x2 field memory)" : "") << "\n";
   for (auto& [n, d] : st_.fields.decls())
     os << "             " << n << " (" << (d.centring == Centring::Cell ? "cell" : "node") << ", "

@@ -25,6 +25,9 @@ struct BlowUp : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 constexpr int kExitBlowUp = 3;
+// --wall-limit reached: a checkpoint was written, the run is unfinished and resumable
+// (--restart). 75 is sysexits' EX_TEMPFAIL: "try again later".
+constexpr int kExitWallLimit = 75;
 
 struct RunOptions {
   std::string outDir;      // "" = no output at all (tests)
@@ -37,6 +40,10 @@ struct RunOptions {
   std::string restart;
   // SIGINT/SIGTERM: finish the current step, write a checkpoint, stop (voigt run).
   bool handleSignals = false;
+  // Wall-clock limit in seconds (0: none), counted from MPI_Wtime() == wallStart (voigt's
+  // start; -1: run()'s start). Before it would be passed, the run checkpoints and stops.
+  double wallLimit = 0;
+  double wallStart = -1;
 };
 
 // Scene section `checkpoint` (all optional):
@@ -45,8 +52,11 @@ struct RunOptions {
 //   last_good: b    keep a copy of the previous step's fields in memory so a
 //                   blow-up can write the last good state (default true; it
 //                   doubles the field memory)
+//   wall_interval: S  also write one when S seconds of wall time have passed since
+//                   the last (0 = never; default 0)
 struct CheckpointCfg {
   long interval = 0;
+  double wallInterval = 0;
   int keep = 2;
   bool lastGood = true;
 };
@@ -59,6 +69,7 @@ struct RunResult {
   long segments = 1;          // this run and the restarts before it
   double cellStepsPerSecond = 0;
   int signal = 0;            // SIGINT/SIGTERM that stopped the run (0: it ran to the end)
+  bool wallLimit = false;    // stopped before RunOptions::wallLimit (resumable)
   std::string checkpoint;    // the last checkpoint written ("" if none)
 };
 
@@ -124,6 +135,7 @@ class Simulation {
   nlohmann::json backupMeta_;  // and the rest of that state
   bool haveBackup_ = false;
   long lastCheckpointStep_ = -1;
+  double lastCheckpointWall_ = 0;  // MPI_Wtime after the last checkpoint (checkpoint.wall_interval)
   long checkpointsWritten_ = 0;
   double checkpointSeconds_ = 0;
   long long checkpointBytes_ = 0;

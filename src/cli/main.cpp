@@ -3,7 +3,9 @@
 #include <Kokkos_Core.hpp>
 #include <mpi.h>
 
+#include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "app/simulation.hpp"
 #include "scene/load.hpp"
@@ -24,6 +26,38 @@ Scene load(const std::string& path, const std::vector<std::string>& sets) {
   lo.knownEffects = knownEffectNames();
   lo.extraSections = effectSections();
   return loadScene(path, lo);
+}
+
+// --wall-limit: 3h, 170m, 3600s, 3600 (seconds), 2h30m, or SLURM's HH:MM:SS / MM:SS.
+// Seconds, or -1 if the text is not such a duration.
+double parseDuration(const std::string& text) {
+  double total = 0;
+  if (text.find(':') != std::string::npos) {
+    std::istringstream in(text);
+    int parts = 0;
+    for (std::string f; std::getline(in, f, ':'); ++parts) {
+      if (f.empty() || f.find_first_not_of("0123456789") != std::string::npos || parts == 3) return -1;
+      total = total * 60 + std::stod(f);
+    }
+    if (parts < 2 || text.back() == ':') return -1;
+  } else {
+    for (size_t i = 0; i < text.size();) {
+      if (!std::isdigit(static_cast<unsigned char>(text[i])) && text[i] != '.') return -1;
+      size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(text.substr(i), &used);
+      } catch (const std::exception&) {
+        return -1;
+      }
+      i += used;
+      const char u = i < text.size() ? text[i++] : 's';
+      const double scale = u == 'd' ? 86400 : u == 'h' ? 3600 : u == 'm' ? 60 : u == 's' ? 1 : -1;
+      if (scale < 0) return -1;
+      total += v * scale;
+    }
+  }
+  return total > 0 && std::isfinite(total) ? total : -1;
 }
 
 int info() {
@@ -68,6 +102,14 @@ int run(const Scene& scene, RunOptions opt) {
                 << "\n";
     return 128 + r.signal;
   }
+  if (r.wallLimit) {
+    if (rankOf() == 0)
+      std::cerr << "stopped at the wall limit (" << opt.wallLimit << " s) at step " << r.steps << ", t = " << r.simTime
+                << (r.checkpoint.empty() ? std::string(" (no checkpoint: no output directory)")
+                                         : "; checkpoint " + r.checkpoint + "; unfinished, resumable: continue with --restart")
+                << " (exit code " << kExitWallLimit << ")\n";
+    return kExitWallLimit;
+  }
   if (rankOf() == 0) {
     if (r.segments > 1)  // a restarted run: this segment, and the whole run's cost
       std::cout << "done: step " << r.steps << ", t = " << r.simTime << "; this segment " << r.stepsThisRun
@@ -86,6 +128,7 @@ int run(const Scene& scene, RunOptions opt) {
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
+  const double start = MPI_Wtime(); // --wall-limit counts from here
   int code = 0;
   {
     // Kokkos sees only its own --kokkos-* options: a plain --help is ours.
@@ -102,7 +145,7 @@ int main(int argc, char** argv) {
     long steps = -1;
     double endTime = -1;
     bool overwrite = false, restart = false;
-    std::string restartFrom;
+    std::string restartFrom, wallLimit;
     auto* runCmd = app.add_subcommand("run", "run a scene");
     runCmd->add_option("scene", scenePath, "scene YAML file")->required();
     runCmd->add_option("-o,--output", outDir, "output directory (default output/<scene name>)");
@@ -114,6 +157,15 @@ int main(int argc, char** argv) {
                      "continue from the newest readable checkpoint in the output directory (scene key "
                      "checkpoint.interval); output is appended there");
     runCmd->add_option("--restart-from", restartFrom, "continue from this checkpoint file or directory");
+    runCmd->add_option("--wall-limit", wallLimit,
+                       "wall-clock limit from voigt's start (3h, 170m, 3600s, 3600, 02:50:00): before it, write a "
+                       "checkpoint and exit with code 75 (unfinished, resumable with --restart)")
+        ->check([](const std::string& v) {
+          return parseDuration(v) > 0 ? std::string() : "'" + v + "' is not a duration (3h, 170m, 3600s, 02:50:00)";
+        });
+    runCmd->footer("Exit codes: 0 done, 2 bad scene, 3 blow-up (last good state written), 75 stopped "
+                   "at --wall-limit (checkpoint written; continue with --restart), 128 + N stopped by signal N "
+                   "(SIGINT, SIGTERM: checkpoint written), 1 other errors; bad arguments: CLI11's codes (>= 100).");
     auto* checkCmd = app.add_subcommand("check", "validate a scene and print what a run would do");
     checkCmd->add_option("scene", scenePath, "scene YAML file")->required();
     checkCmd->add_option("--set", sets, "override a scene value: a.b.c=value");
@@ -134,6 +186,7 @@ int main(int argc, char** argv) {
           opt.endTime = endTime;
           opt.restart = !restartFrom.empty() ? restartFrom : restart ? opt.outDir : "";
           opt.handleSignals = true;
+          if (!wallLimit.empty()) opt.wallLimit = parseDuration(wallLimit), opt.wallStart = start;
           code = run(scene, opt);
         }
       }
