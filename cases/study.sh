@@ -1,30 +1,32 @@
 # shellcheck shell=bash
 # shellcheck disable=SC2154  # study_* are set by the sourcing run script
-# The part of cases/*/run that every study shares: options, set-up, the loop over moduli
-# (under mpirun when asked, resumable) and the run table runs.csv / runs.md. Sourced by a
-# study's run script, which first sets
-#   study_scene        the scene file
+# The part of cases/*/run that every study shares: options, set-up, the loop over moduli and
+# models (under mpirun when asked, resumable, within a wall-clock limit) and the run ledger
+# (cases/runs.py). Sourced by a study's run script, which first sets
+#   study_scene        the scene file (its folder's name is the case's name)
 #   study_key          the scene key that carries the modulus (materials.NAME.shear_modulus)
 #   study_moduli       the default moduli (Pa), space-separated
 #   study_quick_sets   array: overrides of the --quick version (cells, end time, outputs)
 #   study_full_sets    array: overrides of the full version
-#   study_quick_out, study_full_out   default output directories
+#   study_quick_out    default output directory of --quick (full runs: $VOIGT_RUNS/<case>)
 # then calls `study_main "$@"` and draws its own figures from the variables it leaves:
-#   out, moduli, quick, figures, py, root.
+#   out, moduli, models, quick, figures, py, root, and study_figure_runs (below).
 # The study's run script's comment header is its --help.
 
 study_usage() { awk 'NR > 1 && !/^#/ { exit } NR > 1' "$0"; }
 study_value() { [ -n "${2-}" ] || { echo "run: $1 needs a value (see --help)" >&2; exit 2; }; }
 
 study_parse() {
-  quick=0 ranks=1 out="" moduli="$study_moduli" resume=0 figures=1 user_sets=()
+  quick=0 ranks=1 out="" moduli="$study_moduli" models=integrate resume=0 figures=1 user_sets=() wall_limit=""
   while [ $# -gt 0 ]; do
     case "$1" in
       --quick) quick=1 ;;
       --ranks) study_value "$1" "${2-}"; ranks="$2"; shift ;;
       -o) study_value "$1" "${2-}"; out="$2"; shift ;;
       --moduli) study_value "$1" "${2-}"; moduli="$2"; shift ;;
+      --models) study_value "$1" "${2-}"; models="$2"; shift ;;
       --resume) resume=1 ;;
+      --wall-limit) study_value "$1" "${2-}"; wall_limit="$2"; shift ;;
       --no-figures) figures=0 ;;
       --set) study_value "$1" "${2-}"; user_sets+=(--set "$2"); shift ;;
       -h|--help) study_usage; exit 0 ;;
@@ -45,48 +47,104 @@ study_setup() {
   [ -x "$voigt" ] || { echo "run: no voigt binary at $voigt (build first, or set VOIGT)" >&2; exit 1; }
 }
 
-# Each modulus in turn; appends cells, steps and wall time (from summary.json) to runs.csv.
+# One run ($1: its id; $2: restart or fresh) and its ledger row, "running" before and the
+# outcome after. Sets rc. $out/<id>.args: "modulus model grid", then voigt's arguments.
+study_one() {
+  local id=$1 dir="$out/$1" meta args extra limit since
+  { read -r -a meta; mapfile -t args; } < "$out/$id.args"
+  extra=(--overwrite)
+  [ "$2" = restart ] && extra=(--restart)
+  if [ -n "$deadline" ]; then
+    limit=$((deadline - $(date +%s)))
+    # Less than a minute left is not worth a start-up: the next job continues.
+    if [ "$limit" -lt 60 ]; then echo "== $id: not started, $limit s left of --wall-limit"; rc=75; return; fi
+    extra+=(--wall-limit "${limit}s")
+  fi
+  echo "== $id -> $dir (${ranks} rank(s), $2)"
+  "$py" "$runs" start "$ledger" "$id" "${meta[@]}" "$ranks"
+  since=$(date +%s)
+  rc=0
+  "${launch[@]}" "$voigt" run "$study_scene" -o "$dir" "${extra[@]}" "${args[@]}" || rc=$?
+  "$py" "$runs" end "$ledger" "$id" "$dir" "$rc" "$since"
+}
+
+# Out of time (75) or stopped by a signal: the unfinished runs continue with --resume.
+study_stop() {
+  "$py" "$runs" table "$ledger" "${todo[@]}" "${selected[@]}" > "$out/runs.md"
+  echo "run: stopped (exit $1); ledger $ledger; continue with --resume" >&2
+  exit "$1"
+}
+
+# Every modulus x model. Full runs live outside the work tree (VOIGT_RUNS), in the committed
+# ledger cases/<name>/runs.csv; --resume continues the unfinished runs there first (selected
+# or not: their .args say how), then starts those not begun, and skips the finished.
 study_runs() {
-  local sets launch mu dir extra start
+  local sets mu model id grid name st all wl fresh=() failed=0
+  todo=()  # also read by study_stop
+  name="$(basename "$(dirname "$study_scene")")"
+  runs="$root/cases/runs.py"
   if [ "$quick" = 1 ]; then
     out="${out:-$root/$study_quick_out}"
     sets=("${study_quick_sets[@]}")
+    ledger="${VOIGT_LEDGER:-$out/runs.csv}"
   else
-    out="${out:-$root/$study_full_out}"
+    out="${out:-${VOIGT_RUNS:-$HOME/voigt-runs}/$name}"
     sets=("${study_full_sets[@]}")
+    ledger="${VOIGT_LEDGER:-$root/cases/$name/runs.csv}"
   fi
   mkdir -p "$out"
+  deadline=""
+  if [ -n "$wall_limit" ]; then
+    wl=$("$py" "$runs" seconds "$wall_limit") || exit 2
+    deadline=$(($(date +%s) + wl))
+  fi
   launch=()
   [ "$ranks" -gt 1 ] && launch=(mpirun -np "$ranks" --allow-run-as-root --oversubscribe)
-  if [ "$resume" = 0 ] || [ ! -f "$out/runs.csv" ]; then
-    echo "mu_S,cells,ranks,end_time,steps,wall_seconds,started_utc" > "$out/runs.csv"
+  if [ "$resume" = 1 ]; then
+    for d in "$out"/*/; do
+      id="$(basename "$d")"
+      if [ -f "$out/$id.args" ] && [ "$("$py" "$runs" state "$d")" = unfinished ]; then todo+=("$id"); fi
+    done
   fi
   for mu in $moduli; do
-    dir="$out/mu_$mu"
-    extra=(--overwrite)
-    if [ "$resume" = 1 ] && [ -e "$dir/latest" ]; then extra=(--restart); fi
-    echo "== mu_S = $mu Pa -> $dir (${ranks} rank(s))"
-    start="$(date -u +%FT%TZ)"
-    "${launch[@]}" "$voigt" run "$study_scene" -o "$dir" "${extra[@]}" \
-      --set "$study_key=$mu" "${sets[@]}" "${user_sets[@]}"
-    "$py" - "$dir/summary.json" "$mu" "$ranks" "$start" >> "$out/runs.csv" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[1]))
-# A resumed run: steps from t = 0 and the wall time of all its segments (their checkpointed
-# steps); a checkpoint older than that record gives only this segment's time.
-wall = s.get("wall_seconds_total")
-wall = s["wall_seconds"] if wall is None else wall
-print("%s,%s,%s,%.6g,%d,%.1f,%s" % (sys.argv[2], "x".join(map(str, s["grid"]["cells"])), sys.argv[3],
-                                    s["simulated_time"], s["steps"], wall, sys.argv[4]))
-PY
+    for model in $models; do
+      all=(--set "$study_key=$mu" --set "elasticity.fluid_side=$model" "${sets[@]}" "${user_sets[@]}")
+      read -r id grid < <("$py" "$runs" id "$study_scene" "$mu" "$model" "${all[@]}")
+      selected+=("$id")
+      st=$("$py" "$runs" state "$out/$id")
+      if [ "$resume" = 1 ] && [ "$st" = finished ]; then echo "== $id: finished, skipped"; continue; fi
+      if [ "$resume" = 1 ] && [ "$st" = unfinished ] && [ -f "$out/$id.args" ]; then continue; fi
+      printf '%s\n' "$mu $model $grid" "${all[@]}" > "$out/$id.args"
+      if [ "$resume" = 1 ] && [ "$st" = unfinished ]; then todo+=("$id"); else fresh+=("$id"); fi
+    done
   done
-  awk -F, 'NR == 1 { print "| mu_S (Pa) | cells | ranks | end time (s) | steps | wall (s) | started (UTC) |"; print "|---|---|---|---|---|---|---|"; next }
-           { printf "| %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7 }' "$out/runs.csv" > "$out/runs.md"
-  cat "$out/runs.md"
+  for id in "${todo[@]}" "${fresh[@]}"; do
+    if [[ " ${todo[*]} " == *" $id "* ]]; then study_one "$id" restart; else study_one "$id" fresh; fi
+    case "$rc" in 0) ;; 75|130|143) study_stop "$rc" ;; *) failed=1 ;; esac
+  done
+  "$py" "$runs" table "$ledger" "${todo[@]}" "${selected[@]}" | tee "$out/runs.md"
+  if [ "$failed" = 1 ]; then echo "run: a run failed (ledger $ledger); no figures" >&2; exit 1; fi
+}
+
+# The figure inputs of one model ($1): fig_runs=(--run DIR LABEL ...) in moduli order, LABEL
+# from the printf format $2 and the modulus; fig_dir: $out, or $out/figures_<model> when the
+# study ran more than one model.
+study_figure_runs() {
+  local mu id
+  fig_runs=()
+  for mu in $moduli; do
+    for id in "${selected[@]}"; do
+      # shellcheck disable=SC2059
+      if [[ "$id" == "mu${mu}_$1_"* ]]; then fig_runs+=(--run "$out/$id" "$(printf "$2" "$mu")"); fi
+    done
+  done
+  fig_dir="$out"
+  if [ "$(wc -w <<< "$models")" -gt 1 ]; then fig_dir="$out/figures_$1"; mkdir -p "$fig_dir"; fi
 }
 
 study_main() {
   study_parse "$@"
   study_setup
+  selected=()
   study_runs
 }

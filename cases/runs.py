@@ -1,0 +1,142 @@
+"""The run ledger of a study (cases/<name>/runs.csv, committed): one row per run, so how far
+each long run got is known even when the machine that ran it is gone. Used by cases/study.sh.
+
+    runs.py id SCENE MODULUS MODEL [KEY=VALUE ...]   -> "RUN_ID GRID" (the --set values win)
+    runs.py seconds DURATION                         -> seconds (3h, 170m, 3600s, 3600, 02:50:00)
+    runs.py state DIR                                -> new | unfinished | finished | failed
+    runs.py start LEDGER RUN_ID MODULUS MODEL GRID RANKS   (the row says "running")
+    runs.py end LEDGER RUN_ID DIR EXIT_CODE SINCE_EPOCH    (the row from DIR/summary.json)
+    runs.py table LEDGER [RUN_ID ...]                -> Markdown
+
+States: running, wall_limit (voigt exit 75), stopped (SIGINT/SIGTERM), finished, failed.
+Standard library only."""
+import csv
+import datetime
+import fcntl
+import json
+import os
+import re
+import sys
+
+COLUMNS = ["run_id", "modulus", "model", "grid", "ranks", "t_reached", "steps", "wall_s", "state", "updated_utc"]
+EXIT_STATE = {0: "finished", 75: "wall_limit", 130: "stopped", 143: "stopped"}
+
+
+def grid_of(scene, sets):
+    """Cells as "NxNyNz": the last domain.cells of the --set values, else the scene's."""
+    for s in reversed(sets):
+        if s.startswith("domain.cells="):
+            return "x".join(re.findall(r"\d+", s.split("=", 1)[1]))
+    with open(scene) as f:
+        m = re.search(r"^\s+cells:\s*\[([^\]]*)\]", f.read(), re.M)
+    return "x".join(re.findall(r"\d+", m.group(1)))
+
+
+def run_id(modulus, model, grid):
+    n = grid.split("x")
+    return "mu%s_%s_%s" % (modulus, model, n[0] if len(set(n)) == 1 else grid)
+
+
+def seconds(text):
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) > 3 or not all(p.isdigit() for p in parts):
+            raise ValueError(text)
+        total = 0.0
+        for p in parts:
+            total = total * 60 + int(p)
+    else:
+        pieces = re.fullmatch(r"(?:\d+(?:\.\d*)?[dhms]?)+", text) and re.findall(r"(\d+(?:\.\d*)?)([dhms]?)", text)
+        if not pieces:
+            raise ValueError(text)
+        scale = {"d": 86400, "h": 3600, "m": 60, "s": 1, "": 1}
+        total = sum(float(v) * scale[u] for v, u in pieces)
+    if not total > 0:
+        raise ValueError(text)
+    return total
+
+
+def summary(path):
+    try:
+        with open(os.path.join(path, "summary.json")) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def state(path):
+    """finished: its summary says so (no "stopped": runs before the "state" key); failed: a
+    blow-up; unfinished: a checkpoint to continue from; new: nothing to continue."""
+    s = summary(path)
+    if s is not None:
+        st = s.get("state", "finished" if "stopped" not in s else None)
+        if st in ("finished", "blow_up"):
+            return "finished" if st == "finished" else "failed"
+    return "unfinished" if os.path.exists(os.path.join(path, "latest")) else "new"
+
+
+def update(ledger, rid, values):
+    """Sets the row's values (a new row if none), under a lock: runs may end together."""
+    fd = os.open(ledger, os.O_RDWR | os.O_CREAT, 0o644)
+    with os.fdopen(fd, "r+", newline="") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        rows = [r for r in csv.DictReader(f)]
+        if rows and "run_id" not in rows[0]:
+            rows = []  # a table of the older format (cells, wall_seconds, ...): replaced
+        row = next((r for r in rows if r["run_id"] == rid), None)
+        if row is None:
+            row = {c: "" for c in COLUMNS}
+            row["run_id"] = rid
+            rows.append(row)
+        row.update(values)
+        row["updated_utc"] = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+        f.seek(0)
+        f.truncate()
+        w = csv.DictWriter(f, COLUMNS, extrasaction="ignore", lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+
+
+def end(ledger, rid, path, code, since):
+    values = {"state": EXIT_STATE.get(code, "failed")}
+    s = summary(path)
+    # A summary older than this run's start is an earlier segment's (this one wrote none).
+    if s is not None and os.path.getmtime(os.path.join(path, "summary.json")) >= since:
+        wall = s.get("wall_seconds_total")
+        values.update(t_reached="%.6g" % s["simulated_time"], steps=str(s["steps"]),
+                      wall_s="%.1f" % (s["wall_seconds"] if wall is None else wall))
+    update(ledger, rid, values)
+
+
+def table(ledger, ids):
+    with open(ledger, newline="") as f:
+        rows = [r for r in csv.DictReader(f) if not ids or r.get("run_id") in ids]
+    out = ["| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+    out += ["| " + " | ".join(r.get(c, "") for c in COLUMNS) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def main(argv):
+    cmd, args = argv[1], argv[2:]
+    if cmd == "id":
+        grid = grid_of(args[0], args[3:])
+        print(run_id(args[1], args[2], grid), grid)
+    elif cmd == "seconds":
+        try:
+            print(max(1, round(seconds(args[0]))))  # whole seconds: for the shell's arithmetic
+        except ValueError:
+            sys.exit("run: --wall-limit '%s' is not a duration (3h, 170m, 3600s, 3600, 02:50:00)" % args[0])
+    elif cmd == "state":
+        print(state(args[0]))
+    elif cmd == "start":
+        update(args[0], args[1], dict(zip(["modulus", "model", "grid", "ranks"], args[2:6]), state="running"))
+    elif cmd == "end":
+        end(args[0], args[1], args[2], int(args[3]), float(args[4]))
+    elif cmd == "table":
+        print(table(args[0], set(args[1:])))
+    else:
+        sys.exit("runs.py: unknown command '%s'" % cmd)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
