@@ -106,11 +106,12 @@ std::string Simulation::describe() const {
   const double mb = st_.fields.bytes(g) / 1048576.0;
   os << "fields     " << st_.fields.decls().size() << " declared, " << mb << " MiB per rank, "
      << double(st_.fields.bytes(g)) / g.cellsOwned() << " bytes per cell (incl. ghosts)\n";
-  if (ck_.interval > 0 || ck_.wallInterval > 0)
-    os << "checkpoint every " << (ck_.interval > 0 ? std::to_string(ck_.interval) + " steps" : "")
-       << (ck_.interval > 0 && ck_.wallInterval > 0 ? " and every " : "")
-       << (ck_.wallInterval > 0 ? std::to_string(ck_.wallInterval) + " s of wall time" : "") << ", keep " << ck_.keep
-       << (ck_.lastGood ? ", last good step kept in memory (x2 field memory)" : "") << "\n";
+  if (ck_.interval > 0 || ck_.wallInterval > 0) {
+    os << "checkpoint every ";
+    if (ck_.interval > 0) os << ck_.interval << " steps" << (ck_.wallInterval > 0 ? " and every " : "");
+    if (ck_.wallInterval > 0) os << ck_.wallInterval << " s of wall time";
+    os << ", keep " << ck_.keep << (ck_.lastGood ? ", last good step kept in memory (x2 field memory)" : "") << "\n";
+  }
   for (auto& [n, d] : st_.fields.decls())
     os << "             " << n << " (" << (d.centring == Centring::Cell ? "cell" : "node") << ", "
        << d.components << ", " << d.owner << ")\n";
