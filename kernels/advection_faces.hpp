@@ -31,8 +31,8 @@ KOKKOS_INLINE_FUNCTION double cellFaceSpeed(const Field& vd, int d, int i, int j
 
 // Momentum face fluxes along axis D (compile-time: the offsets fold into the
 // addressing): slots 5 D + {0: speed, 1: F_rho, 2..4: F_m}.
-template <int D>
-void momentumFaces(const Field& rho, const VecField& v, Range3 nodes, int lim,
+template <int D, int LIM>
+void momentumFaces(const Field& rho, const VecField& v, Range3 nodes,
                    const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
   constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 5 * D;
   const Field vx = v.c[0], vy = v.c[1], vz = v.c[2], vd = v.c[D];
@@ -40,17 +40,17 @@ void momentumFaces(const Field& rho, const VecField& v, Range3 nodes, int lim,
       "momentum_advection_faces", faceRange(nodes, D), KOKKOS_LAMBDA(int i, int j, int k) {
         const double a = 0.5 * (vd(i - di, j - dj, k - dk) + vd(i, j, k));
         double rL, rR, uL, uR;
-        musclStates(lim, rho(i - 2 * di, j - 2 * dj, k - 2 * dk), rho(i - di, j - dj, k - dk), rho(i, j, k),
+        musclStatesT<LIM>(rho(i - 2 * di, j - 2 * dj, k - 2 * dk), rho(i - di, j - dj, k - dk), rho(i, j, k),
                     rho(i + di, j + dj, k + dk), rL, rR);
         F(i, j, k, s0) = a;
         F(i, j, k, s0 + 1) = ktFlux(a, rL, rR);
-        musclStates(lim, vx(i - 2 * di, j - 2 * dj, k - 2 * dk), vx(i - di, j - dj, k - dk), vx(i, j, k),
+        musclStatesT<LIM>(vx(i - 2 * di, j - 2 * dj, k - 2 * dk), vx(i - di, j - dj, k - dk), vx(i, j, k),
                     vx(i + di, j + dj, k + dk), uL, uR);
         F(i, j, k, s0 + 2) = ktFlux(a, rL * uL, rR * uR);
-        musclStates(lim, vy(i - 2 * di, j - 2 * dj, k - 2 * dk), vy(i - di, j - dj, k - dk), vy(i, j, k),
+        musclStatesT<LIM>(vy(i - 2 * di, j - 2 * dj, k - 2 * dk), vy(i - di, j - dj, k - dk), vy(i, j, k),
                     vy(i + di, j + dj, k + dk), uL, uR);
         F(i, j, k, s0 + 3) = ktFlux(a, rL * uL, rR * uR);
-        musclStates(lim, vz(i - 2 * di, j - 2 * dj, k - 2 * dk), vz(i - di, j - dj, k - dk), vz(i, j, k),
+        musclStatesT<LIM>(vz(i - 2 * di, j - 2 * dj, k - 2 * dk), vz(i - di, j - dj, k - dk), vz(i, j, k),
                     vz(i + di, j + dj, k + dk), uL, uR);
         F(i, j, k, s0 + 4) = ktFlux(a, rL * uL, rR * uR);
       });
@@ -75,13 +75,14 @@ KOKKOS_FORCEINLINE_FUNCTION void momentumSum(const Kokkos::View<double****, Kokk
 inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const VecField& v, const Field& rhoRef,
                                       const Field& rhsRho, const VecField& rhs, Range3 nodes, Limiter limiter,
                                       FluxScratch& scratch) {
-  const int lim = static_cast<int>(limiter);
   scratch.reserve(g, 15);
   auto F = scratch.F;
   auto vx = v.c[0], vy = v.c[1], vz = v.c[2];
-  faces::momentumFaces<0>(rho, v, nodes, lim, F);
-  faces::momentumFaces<1>(rho, v, nodes, lim, F);
-  faces::momentumFaces<2>(rho, v, nodes, lim, F);
+  withLimiter(limiter, [&](auto L) {
+    faces::momentumFaces<0, decltype(L)::value>(rho, v, nodes, F);
+    faces::momentumFaces<1, decltype(L)::value>(rho, v, nodes, F);
+    faces::momentumFaces<2, decltype(L)::value>(rho, v, nodes, F);
+  });
   const double ih0 = 1 / g.h[0], ih1 = 1 / g.h[1], ih2 = 1 / g.h[2];
   auto rx = rhs.c[0], ry = rhs.c[1], rz = rhs.c[2];
   for_each3(
@@ -106,8 +107,8 @@ inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const Vec
 namespace faces {
 // Face fluxes of one field q along axis D. Node fields (dual cells): the face
 // speed is the mean of the two nodes; cell fields: the mean of the face's 4 nodes.
-template <int D, bool CellField>
-void scalarFaces(const Field& q, const Field& vd, Range3 r, int lim,
+template <int D, bool CellField, int LIM>
+void scalarFaces(const Field& q, const Field& vd, Range3 r,
                  const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
   constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 2 * D;
   for_each3(
@@ -115,7 +116,7 @@ void scalarFaces(const Field& q, const Field& vd, Range3 r, int lim,
       KOKKOS_LAMBDA(int i, int j, int k) {
         const double a = CellField ? cellFaceSpeed(vd, D, i, j, k) : 0.5 * (vd(i - di, j - dj, k - dk) + vd(i, j, k));
         F(i, j, k, s0) = a;
-        F(i, j, k, s0 + 1) = centralFlux(lim, q(i - 2 * di, j - 2 * dj, k - 2 * dk), q(i - di, j - dj, k - dk),
+        F(i, j, k, s0 + 1) = centralFluxT<LIM>(q(i - 2 * di, j - 2 * dj, k - 2 * dk), q(i - di, j - dj, k - dk),
                                          q(i, j, k), q(i + di, j + dj, k + dk), a);
       });
 }
@@ -131,12 +132,13 @@ KOKKOS_FORCEINLINE_FUNCTION void scalarSum(const Kokkos::View<double****, Kokkos
 
 inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField& v, const Field& rhs, Range3 nodes,
                                   Limiter limiter, FluxScratch& scratch) {
-  const int lim = static_cast<int>(limiter);
   scratch.reserve(g, 6);
   auto F = scratch.F;
-  faces::scalarFaces<0, false>(q, v.c[0], nodes, lim, F);
-  faces::scalarFaces<1, false>(q, v.c[1], nodes, lim, F);
-  faces::scalarFaces<2, false>(q, v.c[2], nodes, lim, F);
+  withLimiter(limiter, [&](auto L) {
+    faces::scalarFaces<0, false, decltype(L)::value>(q, v.c[0], nodes, F);
+    faces::scalarFaces<1, false, decltype(L)::value>(q, v.c[1], nodes, F);
+    faces::scalarFaces<2, false, decltype(L)::value>(q, v.c[2], nodes, F);
+  });
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "node_advection_sum", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
@@ -162,12 +164,13 @@ inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const Ve
 // than one kernel over all of them, perf/README.md). Slots: 2 d + {0: speed, 1: F}.
 inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, const VecField& v, Range3 cells,
                                  Limiter limiter, double dt, double a, bool storeOld, FluxScratch& scratch) {
-  const int lim = static_cast<int>(limiter);
   scratch.reserve(g, 6);
   auto F = scratch.F;
-  faces::scalarFaces<0, true>(q, v.c[0], cells, lim, F);
-  faces::scalarFaces<1, true>(q, v.c[1], cells, lim, F);
-  faces::scalarFaces<2, true>(q, v.c[2], cells, lim, F);
+  withLimiter(limiter, [&](auto L) {
+    faces::scalarFaces<0, true, decltype(L)::value>(q, v.c[0], cells, F);
+    faces::scalarFaces<1, true, decltype(L)::value>(q, v.c[1], cells, F);
+    faces::scalarFaces<2, true, decltype(L)::value>(q, v.c[2], cells, F);
+  });
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "cell_advection_rk2", cells, KOKKOS_LAMBDA(int i, int j, int k) {

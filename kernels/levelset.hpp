@@ -59,8 +59,7 @@ inline void addCellAdvection(const Grid& g, const Field& q, const VecField& v, c
 // Eq. (2) with the smoothed Heaviside of Eq. (4): phase 1 where psi > 0.
 inline void blendProperties(const Field& psi, double kappa, double rho1, double rho2, double mu1, double mu2,
                             const Field& rho, const Field& mu, Range3 cells) {
-  Kokkos::parallel_for(
-      "blend_properties", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("blend_properties", cells, KOKKOS_LAMBDA(int i, int j, int k) {
         const double H = smoothedHeaviside(psi(i, j, k), kappa);
         rho(i, j, k) = H * rho1 + (1 - H) * rho2;
         mu(i, j, k) = H * mu1 + (1 - H) * mu2;

@@ -60,8 +60,7 @@ struct GridGeom {
 inline void divergence(const Grid& g, const VecField& u, const Field& div, Range3 cells) {
   GridGeom G(g);
   auto ux = u.c[0], uy = u.c[1], uz = u.c[2];
-  Kokkos::parallel_for(
-      "divergence", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("divergence", cells, KOKKOS_LAMBDA(int i, int j, int k) {
         double s[3] = {0, 0, 0};
         for (int c = 0; c < 8; ++c) {
           const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
@@ -95,8 +94,7 @@ KOKKOS_INLINE_FUNCTION void nodeGradient(const GridGeom& G, const Field& p, int 
 inline void subtractGradient(const Grid& g, const Field& p, const VecField& coef, double scale,
                              const VecField& u, Range3 nodes) {
   GridGeom G(g);
-  Kokkos::parallel_for(
-      "subtract_gradient", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("subtract_gradient", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         double gr[3];
         nodeGradient(G, p, i, j, k, gr);
         for (int d = 0; d < 3; ++d) u.c[d](i, j, k) -= scale * coef.c[d](i, j, k) * gr[d];

@@ -115,8 +115,7 @@ inline int buildBandList(const Grid& g, const Field& psi0, double band, const In
 
 // H'(psi0) of Eq. (4) over the whole array (ghosts included; psi0 must be fresh).
 inline void deltaField(const Grid& g, const Field& psi0, const Field& dH, double kappa) {
-  Kokkos::parallel_for(
-      "reinit_delta", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}}.policy(),
+  for_each3("reinit_delta", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}},
       KOKKOS_LAMBDA(int i, int j, int k) { dH(i, j, k) = smoothedDelta(psi0(i, j, k), kappa); });
 }
 

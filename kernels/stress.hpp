@@ -36,8 +36,7 @@ inline void viscousStress(const Grid& g, const VecField& u, const Field& mu, con
                           Range3 cells) {
   GridGeom G(g);
   auto t0 = tau.c[0], t1 = tau.c[1], t2 = tau.c[2], t3 = tau.c[3], t4 = tau.c[4], t5 = tau.c[5];
-  Kokkos::parallel_for(
-      "viscous_stress", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("viscous_stress", cells, KOKKOS_LAMBDA(int i, int j, int k) {
         double L[3][3];
         cellVelocityGradient(G, u, i, j, k, L);
         const double m = mu(i, j, k);
@@ -56,8 +55,7 @@ inline void addStressDivergence(const Grid& g, const SymTensorField& tau, const 
                                 const VecField& rhs, Range3 nodes) {
   GridGeom G(g);
   auto t0 = tau.c[0], t1 = tau.c[1], t2 = tau.c[2], t3 = tau.c[3], t4 = tau.c[4], t5 = tau.c[5];
-  Kokkos::parallel_for(
-      "stress_divergence", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("stress_divergence", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         double f[3] = {0, 0, 0};
         for (int c = 0; c < 8; ++c) {
           const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;

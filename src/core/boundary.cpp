@@ -25,8 +25,7 @@ void markFace(const Grid& g, int face, const FaceBc& bc, const IntField& mask, c
   const double v0 = bc.type == BcType::Slip ? 0 : v[0];
   const double v1 = bc.type == BcType::Slip ? 0 : v[1];
   const double v2 = bc.type == BcType::Slip ? 0 : v[2];
-  Kokkos::parallel_for(
-      "mark_face", r.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("mark_face", r, KOKKOS_LAMBDA(int i, int j, int k) {
         mask(i, j, k) |= full;
         if (full & 1) val.c[0](i, j, k) = v0;
         if (full & 2) val.c[1](i, j, k) = v1;
@@ -102,8 +101,7 @@ void addObstacleMask(const Grid& g, const std::vector<Obstacle>& obs, const IntF
 }
 
 void applyFixed(const IntField& mask, const VecField& val, const VecField& u, Range3 nodes) {
-  Kokkos::parallel_for(
-      "apply_fixed", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("apply_fixed", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         const int m = mask(i, j, k);
         if (m & 1) u.c[0](i, j, k) = val.c[0](i, j, k);
         if (m & 2) u.c[1](i, j, k) = val.c[1](i, j, k);
@@ -130,8 +128,7 @@ void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u) {
       for (int c = 0; c < 3; ++c) {
         auto f = u.c[c];
         const int oddc = odd[c];
-        Kokkos::parallel_for(
-            "velocity_ghosts", r.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        for_each3("velocity_ghosts", r, KOKKOS_LAMBDA(int i, int j, int k) {
               int idx[3] = {i, j, k};
               auto at = [&](int l) -> double& {
                 idx[d] = l;
@@ -159,8 +156,7 @@ void fillNodeGhostsEven(const Grid& g, const Field& f) {
       r.b[d] = 0;
       r.e[d] = 1;
       const int ng = g.ng, ext = g.ext[d];
-      Kokkos::parallel_for(
-          "node_ghosts_even", r.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+      for_each3("node_ghosts_even", r, KOKKOS_LAMBDA(int i, int j, int k) {
             int idx[3] = {i, j, k};
             for (int m = 1; m <= ng; ++m) {
               const int lg = lb + dir * m, li = lb - dir * m;
@@ -183,8 +179,7 @@ void fillCellGhostsEven(const Grid& g, const Field& f) {
       r.b[d] = 0;
       r.e[d] = 1;
       const int ng = g.ng, first = g.ng, last = g.ng + g.ln[d] - 1;
-      Kokkos::parallel_for(
-          "cell_ghosts", r.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+      for_each3("cell_ghosts", r, KOKKOS_LAMBDA(int i, int j, int k) {
             int idx[3] = {i, j, k};
             for (int m = 1; m <= ng; ++m) {
               int src[3] = {i, j, k};

@@ -29,8 +29,7 @@ class Gravity : public Effect {
     p.add(Stage::Forces, name(), "uniform body force g", [g](State& st) {
       VecField rhs = st.evalRhs;
       const double g0 = g[0], g1 = g[1], g2 = g[2];
-      Kokkos::parallel_for(
-          "gravity", nodeRange(st.grid).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+      for_each3("gravity", nodeRange(st.grid), KOKKOS_LAMBDA(int i, int j, int k) {
             rhs.c[0](i, j, k) += g0;
             rhs.c[1](i, j, k) += g1;
             rhs.c[2](i, j, k) += g2;

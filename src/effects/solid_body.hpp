@@ -123,8 +123,8 @@ inline double solidBending(const Grid& g, const Field& psi, double kappa, double
   const double x0 = g.lo[0] - c[0], y0 = g.lo[1] - c[1], z0 = g.lo[2] - c[2];
   const double n0 = e[0][0], n1 = e[0][1], n2 = e[0][2], a0 = e[1][0], a1 = e[1][1], a2 = e[1][2];
   const double b0 = e[2][0], b1 = e[2][1], b2 = e[2][2];
-  Kokkos::parallel_for(
-      "solid_body_columns", cellRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  // Scatter-add (atomics): a plain parallel_for, never for_each3's ivdep loop.
+  Kokkos::parallel_for("solid_body_columns", cellRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
         const double w = smoothedHeaviside(psi(i, j, k), kappa);
         if (w <= 0) return;
         const double dx = x0 + (i - ng + i0 + 0.5) * h0, dy = y0 + (j - ng + j0 + 0.5) * h1,

@@ -36,8 +36,7 @@ RowVector devView(Vector& v) {
 void fieldToVec(const Field& f, Vector& v, CellRows rw, Range3 cells, RowFlags ident) {
   auto vv = devView(v);
   const bool zero = ident.extent(0) > 0;
-  Kokkos::parallel_for(
-      "poisson_field_to_vec", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("poisson_field_to_vec", cells, KOKKOS_LAMBDA(int i, int j, int k) {
         const int r = rw.row(i, j, k);
         vv(r) = (zero && ident(r)) ? 0.0 : f(i, j, k);
       });
@@ -46,8 +45,7 @@ void fieldToVec(const Field& f, Vector& v, CellRows rw, Range3 cells, RowFlags i
 
 void vecToField(Vector& v, const Field& f, CellRows rw, Range3 cells) {
   auto vv = devView(v);
-  Kokkos::parallel_for(
-      "poisson_vec_to_field", cells.policy(),
+  for_each3("poisson_vec_to_field", cells,
       KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = vv(rw.row(i, j, k)); });
   Kokkos::fence();
 }

@@ -48,8 +48,7 @@ void Elasticity::advect(State& st) {
   // tau_S = 0 outside the band: in the box, and where the band was last step.
   const double thr = threshold_;
   if (any)
-    Kokkos::parallel_for(
-        "elastic_zero_box", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    for_each3("elastic_zero_box", box, KOKKOS_LAMBDA(int i, int j, int k) {
           if (psi(i, j, k) <= thr)
             for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
         });

@@ -105,8 +105,7 @@ void Elasticity::setup(State& st) {
   const SymTensorField t = solidStressField(st.fields);
   Field psi = st.fields.scalar("psi");
   const double a0 = tau0_[0], a1 = tau0_[1], a2 = tau0_[2], a3 = tau0_[3], a4 = tau0_[4], a5 = tau0_[5];
-  Kokkos::parallel_for(
-      "elastic_initial_stress", cellRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("elastic_initial_stress", cellRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
         const bool in = psi(i, j, k) > 0;
         t.c[0](i, j, k) = in ? a0 : 0.0;
         t.c[1](i, j, k) = in ? a1 : 0.0;

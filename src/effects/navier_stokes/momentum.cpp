@@ -50,8 +50,7 @@ void NavierStokes::nodeDensity(State& st) {
   const Grid& g = st.grid;
   GridGeom G(g);
   Field rho = st.fields.scalar("density"), r0 = st.fields.scalar("momentum_density");
-  Kokkos::parallel_for(
-      "node_density", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) { r0(i, j, k) = G.nodeMean(rho, i, j, k); });
+  for_each3("node_density", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) { r0(i, j, k) = G.nodeMean(rho, i, j, k); });
   st.halo->exchange(r0);
   fillNodeGhostsEven(g, r0);
 }
@@ -70,15 +69,13 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
     nodeDensity(st);
     Field r0 = st.fields.scalar("momentum_density"), rr = st.fields.scalar("momentum_density_rhs");
     evaluateRhs(st, p, u, acc, &r0);
-    Kokkos::parallel_for(
-        "velocity_rate", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    for_each3("velocity_rate", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
           for (int d = 0; d < 3; ++d) acc.c[d](i, j, k) -= u.c[d](i, j, k) * rr(i, j, k) / r0(i, j, k);
         });
   } else {
     evaluateRhs(st, p, u, acc);
   }
-  Kokkos::parallel_for(
-      "fixed_no_acceleration", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("fixed_no_acceleration", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
         const int m = mask(i, j, k);
         for (int d = 0; d < 3; ++d)
           if ((m >> d) & 1) acc.c[d](i, j, k) = 0;
@@ -86,12 +83,10 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   st.halo->exchange(acc);
   const Range3 cells = cellRange(g);
   divergence(g, acc, div, cells);
-  Kokkos::parallel_for(
-      "initial_pressure_rhs", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k); });
+  for_each3("initial_pressure_rhs", cells, KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k); });
   Kokkos::deep_copy(dp, 0.0);
   const PoissonStats s = solver_->solve(rhs, dp);
-  Kokkos::parallel_for(
-      "initial_pressure", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) { pr(i, j, k) += dp(i, j, k); });
+  for_each3("initial_pressure", cells, KOKKOS_LAMBDA(int i, int j, int k) { pr(i, j, k) += dp(i, j, k); });
   Kokkos::deep_copy(dp, 0.0);
   st.halo->exchange(pr);
   st.counters["initial_pressure_iterations"] = s.iterations;
@@ -123,14 +118,12 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
 
   if (!conservative_) {
     evaluateRhs(st, p, u, rhs);
-    Kokkos::parallel_for(
-        "rk2_stage1", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    for_each3("rk2_stage1", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
           for (int c = 0; c < 3; ++c) u.c[c](i, j, k) += dt * rhs.c[c](i, j, k);
         });
     applyFixed(mask, val, u, nodes);
     evaluateRhs(st, p, u, rhs);
-    Kokkos::parallel_for(
-        "rk2_stage2", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    for_each3("rk2_stage2", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
           for (int c = 0; c < 3; ++c)
             u.c[c](i, j, k) = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
         });
@@ -143,8 +136,7 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   Field r0 = st.fields.scalar("momentum_density"), r1 = st.fields.scalar("momentum_density_stage");
   Field rr = st.fields.scalar("momentum_density_rhs");
   evaluateRhs(st, p, u, rhs, &r0);
-  Kokkos::parallel_for(
-      "rk2_stage1_conservative", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("rk2_stage1_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         const double a = r0(i, j, k), b = a + dt * rr(i, j, k);
         r1(i, j, k) = b;
         for (int c = 0; c < 3; ++c) u.c[c](i, j, k) = a * (u.c[c](i, j, k) + dt * rhs.c[c](i, j, k)) / b;
@@ -153,8 +145,7 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   st.halo->exchange(r1);
   fillNodeGhostsEven(g, r1);
   evaluateRhs(st, p, u, rhs, &r1);
-  Kokkos::parallel_for(
-      "rk2_stage2_conservative", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("rk2_stage2_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         const double a = r0(i, j, k), b = r1(i, j, k), r = 0.5 * (a + b + dt * rr(i, j, k));
         for (int c = 0; c < 3; ++c)
           u.c[c](i, j, k) = (a * u0.c[c](i, j, k) + b * u.c[c](i, j, k) + dt * a * rhs.c[c](i, j, k)) / (2 * r);

@@ -23,8 +23,7 @@ void NavierStokes::refreshCoefficients(State& st) {
   VecField coef = st.fields.vector("proj_coef");
   st.halo->exchange(rho);
   fillCellGhostsEven(g, rho);
-  Kokkos::parallel_for(
-      "projection_coef", nodeRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("projection_coef", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
         const double inv = 1 / G.nodeMean(rho, i, j, k);
         const int m = mask(i, j, k);
         for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) = (m >> d) & 1 ? 0.0 : inv;
@@ -45,14 +44,12 @@ void NavierStokes::project(State& st) {
   st.halo->exchange(u);
   divergence(g, u, div, cells);
   st.diag["max_divergence_predicted"] = globalMaxAbs(g, div, cells);
-  Kokkos::parallel_for(
-      "poisson_rhs", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k) / dt; });
+  for_each3("poisson_rhs", cells, KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k) / dt; });
   // dp of the previous step is the initial guess.
   const PoissonStats s = solver_->solve(rhs, dp);
   st.halo->exchange(dp);
   subtractGradient(g, dp, coef, dt, u, nodeRange(g));
-  Kokkos::parallel_for(
-      "pressure_update", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k) { p(i, j, k) += dp(i, j, k); });
+  for_each3("pressure_update", cells, KOKKOS_LAMBDA(int i, int j, int k) { p(i, j, k) += dp(i, j, k); });
   st.halo->exchange(p);
   st.halo->exchange(u);
   fillVelocityGhosts(g, *st.scene, u);
