@@ -60,14 +60,14 @@ inline void addStressDivergence(const Grid& g, const SymTensorField& tau, const 
         for (int c = 0; c < 8; ++c) {
           const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
           const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + e;
-          if (!G.cellExists(0, ci) || !G.cellExists(1, cj) || !G.cellExists(2, ck)) continue;
+          const bool ok = G.cellExists3(ci, cj, ck); // selected, not skipped (projection_ops.hpp)
           const double sx = (a ? 1 : -1) / (4 * G.h[0]), sy = (b ? 1 : -1) / (4 * G.h[1]),
                        sz = (e ? 1 : -1) / (4 * G.h[2]);
           const double xx = t0(ci, cj, ck), yy = t1(ci, cj, ck), zz = t2(ci, cj, ck);
           const double xy = t3(ci, cj, ck), yz = t4(ci, cj, ck), zx = t5(ci, cj, ck);
-          f[0] += sx * xx + sy * xy + sz * zx;
-          f[1] += sx * xy + sy * yy + sz * yz;
-          f[2] += sx * zx + sy * yz + sz * zz;
+          f[0] += ok ? sx * xx + sy * xy + sz * zx : 0.0;
+          f[1] += ok ? sx * xy + sy * yy + sz * yz : 0.0;
+          f[2] += ok ? sx * zx + sy * yz + sz * zz : 0.0;
         }
         const double w = G.nodeWeight(i, j, k);
         for (int d = 0; d < 3; ++d) rhs.c[d](i, j, k) += scale.c[d](i, j, k) * f[d] / w;

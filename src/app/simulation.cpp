@@ -82,6 +82,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt)
   ck_.wallInterval = c.number("wall_interval", ck_.wallInterval, Range::nonNegative());
   ck_.keep = int(c.integer("keep", ck_.keep, 1, 1000));
   ck_.lastGood = c.boolean("last_good", ck_.lastGood);
+  ck_.lastGoodInterval = c.integer("last_good_interval", ck_.lastGoodInterval, 1, 1000000000L);
   c.finish();
   checkSceneAgainstFields(scene_, st_, ck_.lastGood && !opt_.outDir.empty());
 }

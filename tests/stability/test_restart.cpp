@@ -309,7 +309,7 @@ TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
   // A fixed dt 100 times the stable one: the velocity overflows within a few steps.
   const Scene s = caseScene("taylor_green/taylor_green.yaml",
                             {"domain.cells=[16,16,4]", "time.dt=5", "time.end=1e6", "output.enabled=false",
-                             "projection.max_iterations=50"});
+                             "projection.max_iterations=50", "checkpoint.last_good_interval=1"});
   Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 500));
   std::string msg;
   try {
@@ -354,6 +354,32 @@ TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
     const auto j = nlohmann::json::parse(in);
     EXPECT_EQ(j.at("stopped").get<std::string>(), msg);
   }
+}
+
+// checkpoint.last_good_interval = 3: the state left behind is the newest step
+// that is a multiple of 3 before the blow-up (the copy is refreshed every 3 steps).
+TEST(BlowUp, LastGoodIntervalKeepsAnEarlierState) {
+  TempDir tmp;
+  const Scene s = caseScene("taylor_green/taylor_green.yaml",
+                            {"domain.cells=[16,16,4]", "time.dt=5", "time.end=1e6", "output.enabled=false",
+                             "projection.max_iterations=50", "checkpoint.last_good_interval=3"});
+  Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 500));
+  std::string msg;
+  try {
+    sim.run();
+  } catch (const BlowUp& e) {
+    msg = e.what();
+  }
+  ASSERT_FALSE(msg.empty()) << "no blow-up detected";
+  const long kept = (sim.state().step - 1) / 3 * 3;
+  char last[64];
+  std::snprintf(last, sizeof last, "checkpoint_%09ld.h5", kept);
+  EXPECT_NE(msg.find("last good state (step " + std::to_string(kept) + ") written to " + tmp.sub("out/") + last),
+            std::string::npos)
+      << msg;
+  Simulation good(s, MPI_COMM_WORLD, RunOptions{});
+  good.restore(tmp.sub(std::string("out/") + last));
+  EXPECT_EQ(good.state().step, kept);
 }
 
 TEST(BlowUp, CollapsingTimeStep) {
