@@ -158,6 +158,7 @@ inline void addMomentumAdvection(const Grid& g, const Field& rho, const VecField
         const double r0 = rho(i, j, k);
         const double u0[3] = {vx(i, j, k), vy(i, j, k), vz(i, j, k)};
         double tr = 0, tm[3] = {0, 0, 0};
+        VOIGT_UNROLL
         for (int d = 0; d < 3; ++d) {
           const int di = d == 0, dj = d == 1, dk = d == 2;
           const double hinv = d == 0 ? ih0 : d == 1 ? ih1 : ih2;
@@ -168,6 +169,7 @@ inline void addMomentumAdvection(const Grid& g, const Field& rho, const VecField
           musclStates(lim, at(rho, -1), r0, at(rho, 1), at(rho, 2), rLp, rRp);
           musclStates(lim, at(rho, -2), at(rho, -1), r0, at(rho, 1), rLm, rRm);
           tr -= (ktFlux(ap, rLp, rRp) - ktFlux(am, rLm, rRm) - r0 * (ap - am)) * hinv;
+          VOIGT_UNROLL
           for (int c = 0; c < 3; ++c) {
             const Field& q = c == 0 ? vx : c == 1 ? vy : vz;
             double uLp, uRp, uLm, uRm;

@@ -153,6 +153,7 @@ inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField&
 
 inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const VecField& rhs, Range3 nodes,
                                       Limiter limiter, FluxScratch& scratch) {
+  VOIGT_UNROLL
   for (int c = 0; c < 3; ++c) addNodeAdvectionFaces(g, v.c[c], v, rhs.c[c], nodes, limiter, scratch);
 }
 

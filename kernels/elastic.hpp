@@ -86,9 +86,11 @@ KOKKOS_INLINE_FUNCTION void addSpin(const double W[3][3], const double s[6], dou
   double t[3][3];
   unpackSym(s, t);
   double c[3][3];
+  VOIGT_UNROLL
   for (int p = 0; p < 3; ++p)
     for (int q = 0; q < 3; ++q) {
       double v = 0;
+      VOIGT_UNROLL
       for (int r = 0; r < 3; ++r) v += W[p][r] * t[r][q] - t[p][r] * W[r][q];
       c[p][q] = v;
     }
@@ -108,6 +110,7 @@ enum class Rotation : int { Cayley = 0, Explicit = 1 };
 // 1 + a^2 |w|^2 for antisymmetric W, never zero.
 KOKKOS_INLINE_FUNCTION void cayleyTransform(const double W[3][3], double a, double Q[3][3]) {
   double M[3][3], P[3][3];
+  VOIGT_UNROLL
   for (int p = 0; p < 3; ++p)
     for (int q = 0; q < 3; ++q) {
       const double d = p == q ? 1.0 : 0.0;
@@ -126,9 +129,11 @@ KOKKOS_INLINE_FUNCTION void cayleyTransform(const double W[3][3], double a, doub
   A[2][1] = M[0][1] * M[2][0] - M[0][0] * M[2][1];
   A[2][2] = M[0][0] * M[1][1] - M[0][1] * M[1][0];
   const double inv = 1.0 / (M[0][0] * A[0][0] + M[0][1] * A[1][0] + M[0][2] * A[2][0]);
+  VOIGT_UNROLL
   for (int p = 0; p < 3; ++p)
     for (int q = 0; q < 3; ++q) {
       double v = 0;
+      VOIGT_UNROLL
       for (int r = 0; r < 3; ++r) v += A[p][r] * P[r][q];
       Q[p][q] = v * inv;
     }
@@ -142,6 +147,7 @@ KOKKOS_INLINE_FUNCTION void rotateSym(const double Q[3][3], const double s[6], d
   for (int p = 0; p < 3; ++p)
     for (int q = 0; q < 3; ++q) B[p][q] = t[p][0] * Q[q][0] + t[p][1] * Q[q][1] + t[p][2] * Q[q][2];
   double c[3][3];
+  VOIGT_UNROLL
   for (int p = 0; p < 3; ++p)
     for (int q = p; q < 3; ++q) c[p][q] = Q[p][0] * B[0][q] + Q[p][1] * B[1][q] + Q[p][2] * B[2][q];
   out[0] = c[0][0];
@@ -160,6 +166,7 @@ KOKKOS_INLINE_FUNCTION void rotateSym(const double Q[3][3], const double s[6], d
 KOKKOS_INLINE_FUNCTION void bensonUpdate(double tau[6], const double L[3][3], double mu, double dt,
                                          double spinScale = 0.5, Rotation rot = Rotation::Cayley) {
   double W[3][3];
+  VOIGT_UNROLL
   for (int p = 0; p < 3; ++p)
     for (int q = 0; q < 3; ++q) W[p][q] = spinScale * (L[p][q] - L[q][p]);
   double half[6];
@@ -217,6 +224,7 @@ inline int buildNonzeroList(const Grid& g, const SymTensorField& tau, const IntL
       KOKKOS_LAMBDA(int q, int& upd, bool final) {
         const int i = b0 + q % l0, j = b1 + (q / l0) % l1, k = b2 + q / (l0 * l1);
         bool nz = false;
+        VOIGT_UNROLL
         for (int c = 0; c < 6; ++c) nz = nz || t.c[c](i, j, k) != 0;
         if (nz) {
           if (final) cell(upd) = i + e0 * (j + e1 * k);
@@ -232,6 +240,7 @@ inline Range3 listBox(const Grid& g, const IntList& cell, int n) {
   Range3 box{{0, 0, 0}, {0, 0, 0}};
   if (n == 0) return box;
   const Unpack up{g.ext[0], g.ext[1]};
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) {
     Kokkos::MinMaxScalar<int> mm;
     Kokkos::parallel_reduce(
@@ -288,6 +297,7 @@ inline void addSolidStress(const Grid& g, const Field& psi, double kappa, const 
         int i, j, k;
         up(cell(p), i, j, k);
         const double H = smoothedHeaviside(psi(i, j, k), kappa);
+        VOIGT_UNROLL
         for (int c = 0; c < 6; ++c) t.c[c](i, j, k) += H * s.c[c](i, j, k);
       });
 }

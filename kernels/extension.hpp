@@ -44,11 +44,13 @@ inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, co
                 if (!(dp > 0)) continue;
                 const double x = di * h0, y = dj * h1, z = dk * h2;
                 const double w = dp * dp / (x * x + y * y + z * z);
+                VOIGT_UNROLL
                 for (int c = 0; c < 6; ++c) acc[c] += w * s.c[c](i + di, j + dj, k + dk);
                 wsum += w;
               }
         }
         // A local maximum of psi on the fluid side (no higher neighbour) keeps its value.
+        VOIGT_UNROLL
         for (int c = 0; c < 6; ++c) d.c[c](i, j, k) = wsum > 0 ? acc[c] / wsum : s.c[c](i, j, k);
       });
 }

@@ -19,6 +19,7 @@ struct GridGeom {
   bool per[3];
   double h[3];
   explicit GridGeom(const Grid& g) : ng(g.ng) {
+    VOIGT_UNROLL
     for (int d = 0; d < 3; ++d) {
       n[d] = g.n[d];
       c0[d] = g.c0[d];
@@ -31,19 +32,20 @@ struct GridGeom {
   KOKKOS_INLINE_FUNCTION double nodeWeight(int i, int j, int k) const {
     const int l[3] = {i, j, k};
     double w = 1;
+    VOIGT_UNROLL
     for (int d = 0; d < 3; ++d) {
       const int gi = glob(d, l[d]);
-      w *= (!per[d] && (gi == 0 || gi == n[d])) ? 0.5 : 1.0; // a select, not a branch: the loops vectorise
+      w *= (!per[d] & ((gi == 0) | (gi == n[d]))) ? 0.5 : 1.0; // bitwise ops and a select: no branch
     }
     return w;
   }
   // Does the cell with local index l along axis d exist (not beyond a wall)?
   KOKKOS_INLINE_FUNCTION bool cellExists(int d, int l) const {
     const int gi = glob(d, l);
-    return per[d] || (gi >= 0 && gi < n[d]);
+    return per[d] | ((gi >= 0) & (gi < n[d])); // bitwise, not short-circuit: no branch
   }
   KOKKOS_INLINE_FUNCTION bool cellExists3(int ci, int cj, int ck) const {
-    return cellExists(0, ci) && cellExists(1, cj) && cellExists(2, ck);
+    return cellExists(0, ci) & cellExists(1, cj) & cellExists(2, ck);
   }
   // The node stencils below read all 8 cells around a node (ghost cells exist
   // in memory) and select, rather than skip, the missing ones: no branch, so
@@ -53,6 +55,7 @@ struct GridGeom {
   KOKKOS_INLINE_FUNCTION double nodeMean(const Field& f, int i, int j, int k) const {
     double s = 0;
     int m = 0;
+    VOIGT_UNROLL
     for (int c = 0; c < 8; ++c) {
       const int ci = i - 1 + (c & 1), cj = j - 1 + ((c >> 1) & 1), ck = k - 1 + ((c >> 2) & 1);
       const bool ok = cellExists3(ci, cj, ck);
@@ -70,6 +73,7 @@ inline void divergence(const Grid& g, const VecField& u, const Field& div, Range
   auto ux = u.c[0], uy = u.c[1], uz = u.c[2];
   for_each3("divergence", cells, KOKKOS_LAMBDA(int i, int j, int k) {
         double s[3] = {0, 0, 0};
+        VOIGT_UNROLL
         for (int c = 0; c < 8; ++c) {
           const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
           s[0] += (a ? 1 : -1) * ux(i + a, j + b, k + e);
@@ -84,6 +88,7 @@ inline void divergence(const Grid& g, const VecField& u, const Field& div, Range
 KOKKOS_INLINE_FUNCTION void nodeGradient(const GridGeom& G, const Field& p, int i, int j, int k,
                                          double grad[3]) {
   grad[0] = grad[1] = grad[2] = 0;
+  VOIGT_UNROLL
   for (int c = 0; c < 8; ++c) {
     const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1; // 1: cell on the high side of the node
     const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + e;
@@ -94,6 +99,7 @@ KOKKOS_INLINE_FUNCTION void nodeGradient(const GridGeom& G, const Field& p, int 
     grad[2] += ok ? (e ? v : -v) : 0.0;
   }
   const double w = G.nodeWeight(i, j, k);
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) grad[d] /= (4 * G.h[d] * w);
 }
 
@@ -105,6 +111,7 @@ inline void subtractGradient(const Grid& g, const Field& p, const VecField& coef
   for_each3("subtract_gradient", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         double gr[3];
         nodeGradient(G, p, i, j, k, gr);
+        VOIGT_UNROLL
         for (int d = 0; d < 3; ++d) u.c[d](i, j, k) -= scale * coef.c[d](i, j, k) * gr[d];
       });
 }

@@ -142,6 +142,7 @@ inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& p
         bool iface = false, inside = true;
         int eno = 0;
         double g2 = 0;
+        VOIGT_UNROLL
         for (int d = 0; d < 3; ++d) {
           const double m = nb[d][0], p = nb[d][1];
           iface = iface || p0 * m <= 0 || p0 * p <= 0;

@@ -17,17 +17,24 @@ struct SymTensorField {
 // L_ij = du_i/dx_j at the centre of local cell (i,j,k).
 KOKKOS_INLINE_FUNCTION void cellVelocityGradient(const GridGeom& G, const VecField& u, int i, int j,
                                                  int k, double L[3][3]) {
+  VOIGT_UNROLL
   for (int a = 0; a < 3; ++a)
+    VOIGT_UNROLL
     for (int b = 0; b < 3; ++b) L[a][b] = 0;
+  VOIGT_UNROLL
   for (int c = 0; c < 8; ++c) {
     const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
     const int s[3] = {a ? 1 : -1, b ? 1 : -1, e ? 1 : -1};
+    VOIGT_UNROLL
     for (int comp = 0; comp < 3; ++comp) {
       const double v = u.c[comp](i + a, j + b, k + e);
+      VOIGT_UNROLL
       for (int dir = 0; dir < 3; ++dir) L[comp][dir] += s[dir] * v;
     }
   }
+  VOIGT_UNROLL
   for (int comp = 0; comp < 3; ++comp)
+    VOIGT_UNROLL
     for (int dir = 0; dir < 3; ++dir) L[comp][dir] /= 4 * G.h[dir];
 }
 
@@ -57,6 +64,7 @@ inline void addStressDivergence(const Grid& g, const SymTensorField& tau, const 
   auto t0 = tau.c[0], t1 = tau.c[1], t2 = tau.c[2], t3 = tau.c[3], t4 = tau.c[4], t5 = tau.c[5];
   for_each3("stress_divergence", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         double f[3] = {0, 0, 0};
+        VOIGT_UNROLL
         for (int c = 0; c < 8; ++c) {
           const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
           const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + e;
@@ -70,6 +78,7 @@ inline void addStressDivergence(const Grid& g, const SymTensorField& tau, const 
           f[2] += ok ? sx * zx + sy * yz + sz * zz : 0.0;
         }
         const double w = G.nodeWeight(i, j, k);
+        VOIGT_UNROLL
         for (int d = 0; d < 3; ++d) rhs.c[d](i, j, k) += scale.c[d](i, j, k) * f[d] / w;
       });
 }

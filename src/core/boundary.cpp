@@ -36,10 +36,13 @@ void markFace(const Grid& g, int face, const FaceBc& bc, const IntField& mask, c
 void markFaces(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t) {
   // Order sets priority at edges and corners: slip, then moving walls and
   // inflow, then stationary walls (a lid's corner nodes stay at rest).
+  VOIGT_UNROLL
   for (int f = 0; f < 6; ++f)
     if (s.bc[f].type == BcType::Slip) markFace(g, f, s.bc[f], mask, val, false, false, t);
+  VOIGT_UNROLL
   for (int f = 0; f < 6; ++f)
     if (s.bc[f].type != BcType::Slip) markFace(g, f, s.bc[f], mask, val, true, false, t);
+  VOIGT_UNROLL
   for (int f = 0; f < 6; ++f)
     if (s.bc[f].type != BcType::Slip) markFace(g, f, s.bc[f], mask, val, false, true, t);
 }
@@ -47,6 +50,7 @@ void markFaces(const Grid& g, const Scene& s, const IntField& mask, const VecFie
 
 void buildFaceMask(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t) {
   Kokkos::deep_copy(mask, 0);
+  VOIGT_UNROLL
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(val.c[c], 0.0);
   markFaces(g, s, mask, val, t);
 }
@@ -110,7 +114,9 @@ void applyFixed(const IntField& mask, const VecField& val, const VecField& u, Ra
 }
 
 void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u) {
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) {
+    VOIGT_UNROLL
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? !g.atLo(d) : !g.atHi(d)) continue;
       const FaceBc& bc = s.bc[2 * d + side];
@@ -125,6 +131,7 @@ void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u) {
       r.b[d] = 0;
       r.e[d] = 1; // iterate the face plane; ghosts handled inside
       const int ng = g.ng, ext = g.ext[d];
+      VOIGT_UNROLL
       for (int c = 0; c < 3; ++c) {
         auto f = u.c[c];
         const int oddc = odd[c];
@@ -148,7 +155,9 @@ void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u) {
 }
 
 void fillNodeGhostsEven(const Grid& g, const Field& f) {
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) {
+    VOIGT_UNROLL
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? !g.atLo(d) : !g.atHi(d)) continue;
       const int lb = side == 0 ? g.ng : g.local(d, g.n[d]), dir = side == 0 ? -1 : 1;
@@ -172,7 +181,9 @@ void fillNodeGhostsEven(const Grid& g, const Field& f) {
 }
 
 void fillCellGhostsEven(const Grid& g, const Field& f) {
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) {
+    VOIGT_UNROLL
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? !g.atLo(d) : !g.atHi(d)) continue;
       Range3 r{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};

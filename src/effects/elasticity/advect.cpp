@@ -42,6 +42,7 @@ void Elasticity::advect(State& st) {
     refreshStress(st); // collective: every rank, band or not
     if (!any) continue;
     // Face fluxes once each, RK update fused (kernels/advection_faces.hpp).
+    VOIGT_UNROLL
     for (int c = 0; c < 6; ++c)
       advanceCellAdvection(g, t.c[c], o[c], u, box, limiter_, dt, stage == 0 ? 1.0 : 0.5, stage == 0, flux_);
   }
@@ -62,6 +63,7 @@ void Elasticity::advect(State& st) {
           int i, j, k;
           up(prev(p), i, j, k);
           if (psi(i, j, k) <= thr) {
+            VOIGT_UNROLL
             for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
             S2(i, j, k) = 0;
             lg(i, j, k) = floorLog;

@@ -30,6 +30,7 @@ SymTensorField solidStressField(const FieldStore& f) { return symTensorField(f, 
 SymTensorField symTensorField(const FieldStore& f, const std::string& base) {
   VecField n = f.vector(base), s = f.vector(base + "_shear");
   SymTensorField t;
+  VOIGT_UNROLL
   for (int c = 0; c < 3; ++c) {
     t.c[c] = n.c[c];
     t.c[3 + c] = s.c[c];
@@ -60,6 +61,7 @@ void Elasticity::configure(const Scene& s) {
   extend_ = side_ != "integrate";
   const Section is = sec.section("initial_stress");
   const char* keys[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+  VOIGT_UNROLL
   for (int c = 0; c < 6; ++c) tau0_[c] = is.number(keys[c], 0);
   is.finish();
   sec.finish();
@@ -83,6 +85,7 @@ void Elasticity::refreshStress(State& st) const { refresh(st, solidStressField(s
 
 void Elasticity::refresh(State& st, const SymTensorField& t) const {
   st.halo->exchange(std::vector<Field>(t.c, t.c + 6));
+  VOIGT_UNROLL
   for (int c = 0; c < 6; ++c) fillCellGhostsEven(st.grid, t.c[c]);
 }
 

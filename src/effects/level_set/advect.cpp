@@ -21,6 +21,7 @@ void LevelSet::advect(State& st) {
   st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
   const double dt = st.dt;
   Kokkos::deep_copy(old, psi);
+  VOIGT_UNROLL
   for (int stage = 0; stage < 2; ++stage) {
     refreshGhosts(st, psi);
     advanceCellAdvection(g, psi, old, u, cells, limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
@@ -45,6 +46,7 @@ void LevelSet::diagnose(State& st) {
   sharpVolume_ = glob[1];
   area_ = glob[2];
   double total = 1;
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) total *= g.hi[d] - g.lo[d];
   const double drift = volume0_ != 0 ? volume_ / volume0_ - 1 : 0;
   driftMax_ = std::max(driftMax_, std::abs(drift));

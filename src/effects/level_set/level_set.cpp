@@ -82,6 +82,7 @@ void LevelSet::registerTasks(Pipeline& p) {
 
 void LevelSet::summary(const State& st, nlohmann::json& j) const {
   double total = 1;
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) total *= st.grid.hi[d] - st.grid.lo[d];
   j["volume_per_phase"] = {{phase_, volume_}, {scene_->fluid, total - volume_}};
   j["level_set"] = {{"phase", phase_},

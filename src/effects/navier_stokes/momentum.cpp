@@ -29,6 +29,7 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
   const Grid& g = st.grid;
   const Range3 nodes = nodeRange(g);
   refreshGhosts(st, u);
+  VOIGT_UNROLL
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs.c[c], 0.0);
   if (rho)
     addMomentumAdvectionFaces(g, *rho, u, st.fields.scalar("momentum_density"),
@@ -70,6 +71,7 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
     Field r0 = st.fields.scalar("momentum_density"), rr = st.fields.scalar("momentum_density_rhs");
     evaluateRhs(st, p, u, acc, &r0);
     for_each3("velocity_rate", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
+          VOIGT_UNROLL
           for (int d = 0; d < 3; ++d) acc.c[d](i, j, k) -= u.c[d](i, j, k) * rr(i, j, k) / r0(i, j, k);
         });
   } else {
@@ -77,6 +79,7 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   }
   for_each3("fixed_no_acceleration", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
         const int m = mask(i, j, k);
+        VOIGT_UNROLL
         for (int d = 0; d < 3; ++d)
           if ((m >> d) & 1) acc.c[d](i, j, k) = 0;
       });
@@ -105,6 +108,7 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   IntField mask = st.fields.integer("fix_mask");
   VecField val = st.fields.vector("fix_value");
   const double dt = st.dt;
+  VOIGT_UNROLL
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(u0.c[c], u.c[c]);
   // Oscillating walls: prescribed values at t^{n+1}. Heun's stages sit at t^n
   // and t^{n+1}: u^n already holds the wall value at t^n, and both the stage-1
@@ -119,11 +123,13 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   if (!conservative_) {
     evaluateRhs(st, p, u, rhs);
     for_each3("rk2_stage1", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+          VOIGT_UNROLL
           for (int c = 0; c < 3; ++c) u.c[c](i, j, k) += dt * rhs.c[c](i, j, k);
         });
     applyFixed(mask, val, u, nodes);
     evaluateRhs(st, p, u, rhs);
     for_each3("rk2_stage2", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+          VOIGT_UNROLL
           for (int c = 0; c < 3; ++c)
             u.c[c](i, j, k) = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
         });
@@ -139,6 +145,7 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   for_each3("rk2_stage1_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         const double a = r0(i, j, k), b = a + dt * rr(i, j, k);
         r1(i, j, k) = b;
+        VOIGT_UNROLL
         for (int c = 0; c < 3; ++c) u.c[c](i, j, k) = a * (u.c[c](i, j, k) + dt * rhs.c[c](i, j, k)) / b;
       });
   applyFixed(mask, val, u, nodes);
@@ -147,6 +154,7 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   evaluateRhs(st, p, u, rhs, &r1);
   for_each3("rk2_stage2_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         const double a = r0(i, j, k), b = r1(i, j, k), r = 0.5 * (a + b + dt * rr(i, j, k));
+        VOIGT_UNROLL
         for (int c = 0; c < 3; ++c)
           u.c[c](i, j, k) = (a * u0.c[c](i, j, k) + b * u.c[c](i, j, k) + dt * a * rhs.c[c](i, j, k)) / (2 * r);
       });

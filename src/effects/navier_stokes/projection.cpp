@@ -26,6 +26,7 @@ void NavierStokes::refreshCoefficients(State& st) {
   for_each3("projection_coef", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
         const double inv = 1 / G.nodeMean(rho, i, j, k);
         const int m = mask(i, j, k);
+        VOIGT_UNROLL
         for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) = (m >> d) & 1 ? 0.0 : inv;
       });
   st.halo->exchange(coef);

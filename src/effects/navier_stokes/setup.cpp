@@ -15,6 +15,7 @@ std::unique_ptr<Effect> makeNavierStokes() { return std::make_unique<NavierStoke
 SymTensorField stressField(const FieldStore& f) {
   const char* names[6] = {"tau_xx", "tau_yy", "tau_zz", "tau_xy", "tau_yz", "tau_zx"};
   SymTensorField t;
+  VOIGT_UNROLL
   for (int c = 0; c < 6; ++c) t.c[c] = f.scalar(names[c]);
   return t;
 }
@@ -34,6 +35,7 @@ void NavierStokes::configure(const Scene& s) {
   }
   conservative_ = s.advection.momentum == "conservative" || (s.advection.momentum == "auto" && varying);
   bool haveOutflow = false;
+  VOIGT_UNROLL
   for (int i = 0; i < 6; ++i) {
     const FaceBc& f = s.bc[i];
     if (f.type != BcType::Outflow) continue;
@@ -109,6 +111,7 @@ void NavierStokes::initialVelocity(State& st) {
         } else if (mode == 4) {
           v[0] = 4 * A * (y - lo1) * (Ly - (y - lo1)) / (Ly * Ly);
         }
+        VOIGT_UNROLL
         for (int c = 0; c < 3; ++c) u.c[c](i, j, k) = v[c];
         p(i, j, k) = pc;
       });
@@ -158,6 +161,7 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
   VecField u = st.fields.vector("velocity");
   DtLimit best;
   double inv = 0;
+  VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) inv += globalMaxAbs(g, u.c[d], nodeRange(g)) / g.h[d];
   if (inv > 0) best = {scene_->time.cfl / inv, "advective CFL"};
   // Explicit viscous limit dt <= 1 / (2 nu sum 1/h^2) (NUMERICS.md, = h^2/(6 nu)).
@@ -178,6 +182,7 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
     // them): flattened cells with elasticity blew up at 0.69x the plain limit
     // (tests/elasticity/test_kelvin_voigt.cpp). Same as before for cubes.
     double s = 0, hmin = g.h[0];
+    VOIGT_UNROLL
     for (int d = 0; d < 3; ++d) s += 1 / (g.h[d] * g.h[d]), hmin = std::min(hmin, g.h[d]);
     s = std::max(s, 2 / (hmin * hmin));
     const double dv = scene_->time.viscousSafety / (2 * nuG * s);
