@@ -23,6 +23,38 @@ inline double globalMaxAbs(const Grid& g, const Field& f, Range3 r) {
   return out;
 }
 
+// Non-finite values (NaN, +-Inf) of f over r on this rank. The per-step blow-up
+// check: an integer count, so the i-loop vectorises on host (no FP reduction).
+inline long long countNonFinite(const Field& f, Range3 r) {
+  long long n = 0;
+#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
+  if constexpr (!std::is_same<ExecSpace, Kokkos::DefaultHostExecutionSpace>::value) {
+    Kokkos::parallel_reduce(
+        "count_non_finite", r.policy(),
+        KOKKOS_LAMBDA(int i, int j, int k, long long& acc) {
+          const double v = f(i, j, k);
+          acc += !(v - v == 0);
+        },
+        n);
+    return n;
+  }
+#endif
+  using Policy2 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+  const int b0 = r.b[0], e0 = r.e[0];
+  Kokkos::parallel_reduce(
+      "count_non_finite", Policy2({r.b[1], r.b[2]}, {r.e[1], r.e[2]}, {1, 1}),
+      KOKKOS_LAMBDA(int j, int k, long long& acc) {
+        long long c = 0;
+        for (int i = b0; i < e0; ++i) {
+          const double v = f(i, j, k);
+          c += !(v - v == 0);
+        }
+        acc += c;
+      },
+      n);
+  return n;
+}
+
 inline double globalSum(const Grid& g, double local) {
   double out = 0;
   MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_SUM, g.comm);

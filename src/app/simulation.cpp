@@ -186,6 +186,18 @@ void Simulation::advance(double dt) {
 
 void Simulation::checkFinite() {
   const Grid& g = st_.grid;
+  // Fast path, every step: one count over all fields and one Allreduce. Only a
+  // blow-up pays for the search below (a reduction and Allreduces per field).
+  long long local = 0, total = 0;
+  for (auto& name : st_.fields.allocatedNames()) {
+    auto d = st_.fields.decls().at(name);
+    if (d.isInt) continue;
+    const Range3 r = d.centring == Centring::Cell ? cellRange(g) : nodeRange(g);
+    if (d.components == 1) local += countNonFinite(st_.fields.scalar(name), r);
+    else for (int c = 0; c < 3; ++c) local += countNonFinite(st_.fields.vector(name).c[c], r);
+  }
+  MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
+  if (total == 0) return;
   std::vector<std::string> bad; // every non-finite field component, with its first point
   for (auto& name : st_.fields.allocatedNames()) {
     auto d = st_.fields.decls().at(name);
