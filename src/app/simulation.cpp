@@ -111,7 +111,9 @@ std::string Simulation::describe() const {
     os << "checkpoint every ";
     if (ck_.interval > 0) os << ck_.interval << " steps" << (ck_.wallInterval > 0 ? " and every " : "");
     if (ck_.wallInterval > 0) os << ck_.wallInterval << " s of wall time";
-    os << ", keep " << ck_.keep << (ck_.lastGood ? ", last good step kept in memory (x2 field memory)" : "") << "\n";
+    os << ", keep " << ck_.keep << (ck_.lastGood ? ", last good state kept in memory every " + std::to_string(ck_.lastGoodInterval) +
+                                            " steps (x2 field memory)"
+                                      : std::string()) << "\n";
   }
   for (auto& [n, d] : st_.fields.decls())
     os << "             " << n << " (" << (d.centring == Centring::Cell ? "cell" : "node") << ", "
