@@ -101,7 +101,11 @@ RunResult Simulation::run() {
   if (!opt_.outDir.empty()) probes_ = std::make_unique<ProbeSet>(g, scene_.probes, opt_.outDir, ckFile.empty() ? -1 : st_.t);
   if (ckFile.empty()) output(true);
   const bool tty = opt_.progress && isatty(2) && g.rank == 0;
+  // Batch logs (stderr not a terminal): a full progress line every kBatchProgressSeconds.
+  constexpr double kBatchProgressSeconds = 10;
+  const bool batch = opt_.progress && !isatty(2) && g.rank == 0;
   const double w0 = MPI_Wtime();
+  double lastProgress = w0;
   runStart_ = w0;
   lastCheckpointWall_ = w0;
   WallLimit wall;
@@ -113,6 +117,7 @@ RunResult Simulation::run() {
   const double ckGuess = 0.5 + double(st_.fields.bytes(g)) * g.size / 1e8;
   const bool wallChecks = opt_.wallLimit > 0 || (ck_.wallInterval > 0 && checkpointer_);
   const long step0 = st_.step;
+  const double t0 = st_.t; // the ETA counts from this segment's start
   RunResult r;
   auto finish = [&]() {
     r.steps = st_.step;
@@ -122,6 +127,8 @@ RunResult Simulation::run() {
     r.wallSecondsTotal = wallBefore_ + r.wallSeconds;
     r.segments = segments_;
     r.cellStepsPerSecond = r.wallSeconds > 0 ? double(g.cellsGlobal()) * r.stepsThisRun / r.wallSeconds : 0;
+    const auto capped = st_.counters.find("poisson_unconverged");
+    r.poissonCapped = capped == st_.counters.end() ? 0 : long(capped->second);
   };
   // A blow-up: write the last good state, the summary, and stop (collective).
   auto blowUp = [&](std::string msg, bool currentIsGood) {
@@ -179,10 +186,11 @@ RunResult Simulation::run() {
     wall.stepTook(MPI_Wtime() - stepStart);
     if (ck_.interval > 0 && st_.step % ck_.interval == 0 && checkpointer_)
       r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
-    if (tty) {
-      const double el = MPI_Wtime() - w0, eta = el / st_.t * (tEnd - st_.t);
-      fprintf(stderr, "\rstep %ld  t = %.5g  dt = %.3g (%s)  ETA %.0f s   ", st_.step, st_.t, st_.dt,
-              st_.dtReason.c_str(), eta);
+    if (tty || (batch && MPI_Wtime() - lastProgress >= kBatchProgressSeconds)) {
+      const double now = MPI_Wtime(), el = now - w0, eta = el / (st_.t - t0) * (tEnd - st_.t);
+      fprintf(stderr, "%sstep %ld  t = %.5g  dt = %.3g (%s)  %.0f s  ETA %.0f s%s", tty ? "\r" : "", st_.step, st_.t,
+              st_.dt, st_.dtReason.c_str(), el, eta, tty ? "   " : "\n");
+      lastProgress = now;
     }
   }
   if (tty) fprintf(stderr, "\n");

@@ -182,6 +182,7 @@ void Simulation::advance(double dt) {
   st_.t += st_.dt;
   st_.step += 1;
   checkFinite();
+  if (!st_.stopRequest.empty()) throw BlowUp("stopped: " + st_.stopRequest);
   if (st_.fields.allocated("density")) // kinematic scenes (prescribed_flow) carry no mass
     st_.diag["kinetic_energy"] = kineticEnergy(st_.grid, st_.fields.vector("velocity"), st_.fields.scalar("density"));
 }

@@ -34,7 +34,7 @@ struct RunOptions {
   bool overwrite = false;
   long maxSteps = -1;      // overrides scene time.max_steps when >= 0
   double endTime = -1;     // overrides scene time.end when > 0
-  bool progress = true;    // progress line on stderr (only if it is a terminal)
+  bool progress = true;    // progress on stderr: a live line on a terminal, else a line every 10 s
   // Restart from a checkpoint: a checkpoint file, or a directory whose newest
   // readable checkpoint is used (`voigt run --restart`: the output directory).
   std::string restart;
@@ -72,6 +72,7 @@ struct RunResult {
   double wallSecondsTotal = 0;  // with the earlier segments' checkpointed steps (NaN: unknown)
   long segments = 1;          // this run and the restarts before it
   double cellStepsPerSecond = 0;
+  long poissonCapped = 0;     // Poisson solves that stopped at their iteration cap (whole run)
   int signal = 0;            // SIGINT/SIGTERM that stopped the run (0: it ran to the end)
   bool wallLimit = false;    // stopped before RunOptions::wallLimit (resumable)
   std::string checkpoint;    // the last checkpoint written ("" if none)

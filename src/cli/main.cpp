@@ -118,6 +118,9 @@ int run(const Scene& scene, RunOptions opt) {
     else
       std::cout << "done: " << r.steps << " steps to t = " << r.simTime << " in " << r.wallSeconds << " s ("
                 << r.cellStepsPerSecond << " cell-steps/s)\n";
+    if (r.poissonCapped > 0)
+      std::cout << "warning: " << r.poissonCapped << " Poisson solve" << (r.poissonCapped > 1 ? "s" : "")
+                << " stopped at the iteration cap (projection.max_iterations; summary.json poisson.unconverged)\n";
     if (!opt.outDir.empty())
       std::cout << "output: " << opt.outDir << "/fields.xdmf (open in ParaView: File > Open, choose the "
                 << "Xdmf3 reader), summary.json, timeseries.csv\n";

@@ -36,6 +36,10 @@ struct State {
   // running counters, for summary.json and the time-series CSV.
   std::map<std::string, double> diag;
   std::map<std::string, double> counters;
+
+  // Set by a task that asks the run to stop after this step (the same on every
+  // rank): Simulation::advance stops the run as a failure with this message.
+  std::string stopRequest;
 };
 
 } // namespace voigt

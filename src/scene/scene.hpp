@@ -68,6 +68,9 @@ struct ProjectionCfg {
   // Gauss-Seidel, sequential sweeps); chebyshev: Ifpack2 Chebyshev of this degree (matrix-
   // vector products only: runs on threads and GPUs; perf/README.md compares the two).
   std::string multigridSmoother = "sgs";
+  // A solve that reaches max_iterations: warn (stderr, as it happens; counted in
+  // summary.json and the end-of-run line) or stop (the run fails, exit code 3).
+  std::string onCap = "warn";
   int chebyshevDegree = 2;
 };
 

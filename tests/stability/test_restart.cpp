@@ -382,6 +382,33 @@ TEST(BlowUp, LastGoodIntervalKeepsAnEarlierState) {
   EXPECT_EQ(good.state().step, kept);
 }
 
+// A Poisson solve that reaches projection.max_iterations: counted (warn, the
+// default) or the run stops as a failure with the last good state (on_cap: stop).
+// One CG iteration cannot reach 1e-14 on Taylor-Green, so every solve is capped.
+TEST(BlowUp, PoissonIterationCap) {
+  const std::vector<std::string> sets = {"domain.cells=[16,16,4]", "output.enabled=false",
+                                         "projection.max_iterations=1", "projection.tolerance=1e-14"};
+  {
+    TempDir tmp;
+    Simulation sim(caseScene("taylor_green/taylor_green.yaml", sets), MPI_COMM_WORLD, runOpts(tmp.sub("out"), 3));
+    const RunResult r = sim.run();
+    EXPECT_EQ(r.steps, 3);
+    EXPECT_EQ(r.poissonCapped, 3);
+  }
+  TempDir tmp;
+  auto stop = sets;
+  stop.push_back("projection.on_cap=stop");
+  Simulation sim(caseScene("taylor_green/taylor_green.yaml", stop), MPI_COMM_WORLD, runOpts(tmp.sub("out"), 3));
+  std::string msg;
+  try {
+    sim.run();
+  } catch (const BlowUp& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("stopped at its iteration cap (1 iterations"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("projection.on_cap is stop; last good state (step 0)"), std::string::npos) << msg;
+}
+
 TEST(BlowUp, CollapsingTimeStep) {
   TempDir tmp;
   // The stable dt is about 0.1; min_dt 0.2 declares that a collapse.

@@ -35,6 +35,7 @@ class NavierStokes : public Effect {
   // Stages (public so tests can drive them one at a time).
   void momentum(State& st, Pipeline& p);
   void project(State& st);
+  void reportCap(State& st, const PoissonStats& s);
   void refreshCoefficients(State& st);
 
  private:

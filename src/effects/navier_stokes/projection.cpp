@@ -5,7 +5,11 @@
 // the solver residual; approximate: the compact 7-point Laplacian (NUMERICS.md).
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <iostream>
+#include <sstream>
 
 #include "core/boundary.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
@@ -32,6 +36,23 @@ void NavierStokes::refreshCoefficients(State& st) {
   st.halo->exchange(coef);
   solver_->setCoefficients(coef);
   st.propertiesChanged = false;
+}
+
+// A solve that stopped at its iteration cap: said on stderr as it happens (the
+// first 10; all are counted), and the run stops if the scene asks for it.
+void NavierStokes::reportCap(State& st, const PoissonStats& s) {
+  const double n = st.counters["poisson_unconverged"] += 1;
+  const ProjectionCfg& P = scene_->projection;
+  std::ostringstream os;
+  os << "Poisson solve at step " << st.step + 1 << " stopped at its iteration cap (" << s.iterations
+     << " iterations, relative residual " << s.relResidual << " > tolerance " << P.tolerance << ")";
+  if (P.onCap == "stop") {
+    st.stopRequest = os.str() + " and projection.on_cap is stop";
+    return;
+  }
+  if (st.grid.rank == 0 && n <= 10)
+    std::cerr << (isatty(2) ? "\n" : "") << "warning: " << os.str() << (n == 10 ? "; further capped solves are counted, not printed" : "")
+              << "\n";
 }
 
 void NavierStokes::project(State& st) {
@@ -67,7 +88,7 @@ void NavierStokes::project(State& st) {
   c["poisson_iterations_max"] = std::max(c["poisson_iterations_max"], double(s.iterations));
   c["poisson_seconds"] += s.seconds;
   c["poisson_setup_seconds"] += s.setupSeconds;
-  if (!s.converged) c["poisson_unconverged"] += 1;
+  if (!s.converged) reportCap(st, s);
   c["poisson_breakdowns"] += s.breakdowns;
   c["poisson_incompatibility_max"] = std::max(c["poisson_incompatibility_max"], s.incompatibility);
 }

@@ -153,7 +153,8 @@ std::string solverSummary(const ProjectionCfg& P) {
   }
   char tol[32];
   std::snprintf(tol, sizeof tol, "%g", P.tolerance);
-  return s + ", tolerance " + tol + ", at most " + std::to_string(P.maxIterations) + " iterations";
+  return s + ", tolerance " + tol + ", at most " + std::to_string(P.maxIterations) + " iterations (then " +
+         (P.onCap == "stop" ? "stop the run" : "warn and go on") + ")";
 }
 
 DtLimit NavierStokes::dtLimit(const State& st) const {
