@@ -325,6 +325,7 @@ nlohmann::json Simulation::summary(const RunResult& r) const {
                         {"bytes_last", checkpointBytes_},
                         {"bytes_per_cell", double(checkpointBytes_) / double(g.cellsGlobal())}};
   j["memory_bytes_per_rank"] = st_.fields.bytes(g);
+  if (!opt_.estimate.is_null()) j["estimate"] = opt_.estimate;
   j["fields_allocated"] = st_.fields.allocatedNames();
   // Single phase: the fluid fills the domain (obstacle nodes are velocity constraints).
   double vol = 1;

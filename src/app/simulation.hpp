@@ -44,6 +44,7 @@ struct RunOptions {
   // start; -1: run()'s start). Before it would be passed, the run checkpoints and stops.
   double wallLimit = 0;
   double wallStart = -1;
+  nlohmann::json estimate;  // `voigt run --estimate`: recorded in summary.json beside the measurement
 };
 
 // Scene section `checkpoint` (all optional):

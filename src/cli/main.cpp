@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "app/estimate.hpp"
 #include "app/simulation.hpp"
 #include "scene/load.hpp"
 #include "scene/reader.hpp"
@@ -75,23 +76,36 @@ int info() {
   return 0;
 }
 
-int check(const Scene& scene) {
-  Simulation sim(scene, MPI_COMM_WORLD);
-  sim.initialize();
-  const DtLimit dt = sim.stableDt();
+int check(const Scene& scene, bool estimate) {
+  DtLimit dt;
+  {
+    Simulation sim(scene, MPI_COMM_WORLD);
+    sim.initialize();
+    dt = sim.stableDt();
+    if (rankOf() == 0) std::cout << sim.describe();
+  } // freed before the estimate's calibration run
   if (rankOf() == 0) {
-    std::cout << sim.describe();
     if (scene.time.dt > 0)
       std::cout << "time step  fixed " << scene.time.dt << " (stable limit " << dt.dt << ", " << dt.reason << ")\n";
     else
       std::cout << "time step  adaptive, first dt = " << dt.dt << " (" << dt.reason << ")\n";
     if (scene.time.dt > dt.dt)
       std::cout << "warning    fixed dt exceeds the stable limit\n";
+    std::cout << std::flush;
+  }
+  if (estimate) {
+    const std::string text = estimateRun(scene, MPI_COMM_WORLD).text();
+    if (rankOf() == 0) std::cout << text;
   }
   return 0;
 }
 
-int run(const Scene& scene, RunOptions opt) {
+int run(const Scene& scene, RunOptions opt, bool estimate) {
+  if (estimate) { // before the run's own Simulation, so the two never hold memory at once
+    const Estimate e = estimateRun(scene, MPI_COMM_WORLD, opt.endTime, opt.maxSteps);
+    if (rankOf() == 0) std::cout << e.text() << std::flush;
+    opt.estimate = e.json();
+  }
   Simulation sim(scene, MPI_COMM_WORLD, opt);
   const RunResult r = sim.run();
   if (r.signal) {
@@ -147,7 +161,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> sets;
     long steps = -1;
     double endTime = -1;
-    bool overwrite = false, restart = false;
+    bool overwrite = false, restart = false, estimate = false;
     std::string restartFrom, wallLimit;
     auto* runCmd = app.add_subcommand("run", "run a scene");
     runCmd->add_option("scene", scenePath, "scene YAML file")->required();
@@ -160,6 +174,8 @@ int main(int argc, char** argv) {
                      "continue from the newest readable checkpoint in the output directory (scene key "
                      "checkpoint.interval); output is appended there");
     runCmd->add_option("--restart-from", restartFrom, "continue from this checkpoint file or directory");
+    runCmd->add_flag("--estimate", estimate,
+                     "first print the cost estimate (as voigt check --estimate) and record it in summary.json");
     runCmd->add_option("--wall-limit", wallLimit,
                        "wall-clock limit from voigt's start (3h, 170m, 3600s, 3600, 02:50:00): before it, write a "
                        "checkpoint and exit with code 75 (unfinished, resumable with --restart)")
@@ -172,6 +188,9 @@ int main(int argc, char** argv) {
     auto* checkCmd = app.add_subcommand("check", "validate a scene and print what a run would do");
     checkCmd->add_option("scene", scenePath, "scene YAML file")->required();
     checkCmd->add_option("--set", sets, "override a scene value: a.b.c=value");
+    checkCmd->add_flag("--estimate", estimate,
+                       "also estimate the run's steps, memory, disk and wall time from a few calibration steps "
+                       "(in memory, nothing written)");
     app.add_subcommand("info", "version, Kokkos backend, MPI ranks");
     try {
       app.parse(int(appArgv.size()), appArgv.data());
@@ -180,7 +199,7 @@ int main(int argc, char** argv) {
       } else {
         Scene scene = load(scenePath, sets);
         if (app.got_subcommand("check")) {
-          code = check(scene);
+          code = check(scene, estimate);
         } else {
           RunOptions opt;
           opt.outDir = outDir.empty() ? "output/" + scene.name : outDir;
@@ -190,7 +209,7 @@ int main(int argc, char** argv) {
           opt.restart = !restartFrom.empty() ? restartFrom : restart ? opt.outDir : "";
           opt.handleSignals = true;
           if (!wallLimit.empty()) opt.wallLimit = parseDuration(wallLimit), opt.wallStart = start;
-          code = run(scene, opt);
+          code = run(scene, opt, estimate);
         }
       }
     } catch (const CLI::ParseError& e) {
