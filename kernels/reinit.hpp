@@ -119,10 +119,25 @@ inline void deltaField(const Grid& g, const Field& psi0, const Field& dH, double
       KOKKOS_LAMBDA(int i, int j, int k) { dH(i, j, k) = smoothedDelta(psi0(i, j, k), kappa); });
 }
 
+// gm = |grad psi0| (central differences) where H'(psi0) > 0, else 0, on the owned
+// cells and one ghost layer: the constraint's 27-point sums read it, instead of
+// computing it again at every neighbour (27 times per cell). psi0 needs 2 fresh
+// ghost layers.
+inline void gradMagField(const Grid& g, const Field& psi0, const Field& dH, const Field& gm) {
+  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  for_each3("reinit_grad_mag", cellRange(g, 1), KOKKOS_LAMBDA(int i, int j, int k) {
+    const double gx = (psi0(i + 1, j, k) - psi0(i - 1, j, k)) / (2 * h0);
+    const double gy = (psi0(i, j + 1, k) - psi0(i, j - 1, k)) / (2 * h1);
+    const double gz = (psi0(i, j, k + 1) - psi0(i, j, k - 1)) / (2 * h2);
+    gm(i, j, k) = dH(i, j, k) > 0 ? std::sqrt(gx * gx + gy * gy + gz * gz) : 0.0;
+  });
+}
+
 // Per band cell, fixed for the call: flags, S(psi0), D, and the constraint's coef.
-// psi0 and dH need 2 fresh ghost layers (|grad psi0| at the stencil's neighbours).
+// psi0 and dH need 2 fresh ghost layers; gm: scratch for gradMagField.
 inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& psi0, const Field& dH,
-                        double band, bool constraint) {
+                        const Field& gm, double band, bool constraint) {
+  if (constraint) gradMagField(g, psi0, dH, gm);
   const Unpack up{g.ext[0], g.ext[1]};
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   const double hs = std::min({h0, h1, h2});
@@ -159,21 +174,15 @@ inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& p
         b.dist(q) = std::fmax(-band, std::fmin(band, D));
         double coef = 0;
         if (constraint && dH(i, j, k) > 0) {
-          auto gradMag = [&](int a, int c, int e) {
-            const double gx = (psi0(a + 1, c, e) - psi0(a - 1, c, e)) / (2 * h0);
-            const double gy = (psi0(a, c + 1, e) - psi0(a, c - 1, e)) / (2 * h1);
-            const double gz = (psi0(a, c, e + 1) - psi0(a, c, e - 1)) / (2 * h2);
-            return std::sqrt(gx * gx + gy * gy + gz * gz);
-          };
           const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
           double den = 0;
           for (int c = -1; c <= 1; ++c)
             for (int bb = -1; bb <= 1; ++bb)
               for (int a = -1; a <= 1; ++a) {
                 const double dn = dH(i + a, j + bb, k + c);
-                if (dn > 0) den += w[a + 1] * w[bb + 1] * w[c + 1] * dn * dn * gradMag(i + a, j + bb, k + c);
+                if (dn > 0) den += w[a + 1] * w[bb + 1] * w[c + 1] * dn * dn * gm(i + a, j + bb, k + c);
               }
-          const double f = dH(i, j, k) * gradMag(i, j, k);
+          const double f = dH(i, j, k) * gm(i, j, k);
           // den >= w_c^3 H'_c f_c, so den ~ 0 only where f_c ~ 0 too: lambda = 0 there.
           coef = den > 1e-300 ? f / den : 0.0;
         }

@@ -34,7 +34,7 @@ double gTriad = 0; // STREAM triad, bytes per second
 struct Fixture {
   Grid g;
   VecField u, rhs, coef;
-  Field p, div, mu, psi, rhsCell, psi1, psiT, dH, old;
+  Field p, div, mu, psi, rhsCell, psi1, psiT, dH, gm, old;
   SymTensorField tau, tauS;
   IntList owned, grown; // elastic band (psi > -(kappa + 3 h)): owned cells, one ghost layer more
   int nOwned = 0, nGrown = 0;
@@ -58,7 +58,7 @@ struct Fixture {
       Kokkos::deep_copy(tauS.c[c], c < 3 ? 1.0 : 0.1);
     }
     p = mk("p"), div = mk("div"), mu = mk("mu"), psi = mk("psi"), rhsCell = mk("rhs_cell");
-    psi1 = mk("psi1"), psiT = mk("psiT"), dH = mk("dH"), old = mk("old");
+    psi1 = mk("psi1"), psiT = mk("psiT"), dH = mk("dH"), gm = mk("gm"), old = mk("old");
     Kokkos::deep_copy(mu, 1e-3);
     auto uu = u;
     auto ps = psi, pp = p;
@@ -85,7 +85,7 @@ struct Fixture {
     nBand = reinit::buildBandList(g, psi, 6 * h, band.cell);
     Kokkos::deep_copy(psi1, psi), Kokkos::deep_copy(psiT, psi);
     reinit::deltaField(g, psi, dH, 2 * h);
-    reinit::prepareBand(g, band, nBand, psi, dH, 6 * h, true);
+    reinit::prepareBand(g, band, nBand, psi, dH, gm, 6 * h, true);
     Kokkos::fence();
   }
 };

@@ -21,6 +21,7 @@ Reinitializer::Reinitializer(const Grid& g, ReinitParams p) : g_(&g), p_(p) {
   psi1_ = Field("reinit_psi1", g.ext[0], g.ext[1], g.ext[2]);
   psiT_ = Field("reinit_psiT", g.ext[0], g.ext[1], g.ext[2]);
   dH_ = Field("reinit_dH", g.ext[0], g.ext[1], g.ext[2]);
+  if (p_.volumeConstraint) gm_ = Field("reinit_grad_mag", g.ext[0], g.ext[1], g.ext[2]);
   const size_t cap = size_t(g.cellsOwned());
   band_.cell = reinit::IntList("reinit_band", cap);
   band_.flags = reinit::IntList("reinit_flags", cap);
@@ -52,7 +53,7 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
     Kokkos::deep_copy(psiT_, psi);
     deltaField(g, psi, dH_, p_.kappa);
   }
-  prepareBand(g, band_, n, psi, dH_, p_.band, con);
+  prepareBand(g, band_, n, psi, dH_, gm_, p_.band, con);
 
   for (int m = 0; m < p_.iterations; ++m) {
     // psi (= psi^m) is fresh here.

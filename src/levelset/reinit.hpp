@@ -51,6 +51,7 @@ class Reinitializer {
   const Grid* g_;
   ReinitParams p_;
   Field psi1_, psiT_, dH_;  // RK stage, Eikonal result psi~, H'(psi0)
+  Field gm_;                 // |grad psi0| where H' > 0 (the constraint's scratch)
   reinit::BandViews band_;
 };
 
