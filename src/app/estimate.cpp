@@ -109,7 +109,7 @@ Estimate estimateRun(const Scene& scene, MPI_Comm comm, double tEnd, long maxSte
         while (next <= t + 1e-12 * tEnd) next += iv;
       }
     }
-    if (iv == 0 || crossings == 0 || std::fmod(t, iv) > 1e-9 * tEnd) ++crossings; // the final output
+    if (iv == 0 || next - iv < t - 1e-12) ++crossings; // the final output, as Simulation::run decides it
   } else { // too many to walk: the plain quotient
     e.steps = long(std::ceil(tEnd / dt));
     if (maxSteps >= 0) e.steps = std::min(e.steps, maxSteps);
