@@ -23,9 +23,9 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from scene_record import cylinder  # noqa: E402  (cases/scene_record.py)
-from xdmf import frames  # noqa: E402  (cases/xdmf.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from voigt_post.scene_record import cylinder  # noqa: E402
+from voigt_post.xdmf import frames  # noqa: E402
 
 
 def read_h5(path, name, count):

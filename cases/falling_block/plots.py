@@ -22,8 +22,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from xdmf import frames  # noqa: E402  (cases/xdmf.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from voigt_post.xdmf import frames  # noqa: E402
 
 PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
 STATE_TIMES = (0.04, 0.06, 0.08, 0.10, 0.12, 0.16, 0.20, 0.24, 0.30, 0.36, 0.42, 0.50)

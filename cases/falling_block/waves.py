@@ -32,9 +32,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from plots import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from scene_record import cylinder  # noqa: E402  (cases/scene_record.py)
-from xdmf import frames  # noqa: E402  (cases/xdmf.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from voigt_post.scene_record import cylinder  # noqa: E402
+from voigt_post.xdmf import frames  # noqa: E402
 
 
 def probe(d):

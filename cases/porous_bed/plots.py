@@ -26,8 +26,8 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from xdmf import frames  # noqa: E402  (cases/xdmf.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from voigt_post.xdmf import frames  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 Y0, Y1 = 0.10, 0.25            # the paper's bed interior

@@ -28,8 +28,8 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from xdmf import frames  # noqa: E402  (cases/xdmf.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from voigt_post.xdmf import frames  # noqa: E402
 
 HE1999 = [  # t_T, bubble, spike
     (0.25, 0.113, -0.121), (0.50, 0.161, -0.165), (0.75, 0.213, -0.243), (1.00, 0.274, -0.348),

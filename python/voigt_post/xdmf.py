@@ -3,8 +3,7 @@
 Voigt's writer (src/io/) lists one uniform grid per output, its HDF5 file, time, node counts,
 origin and spacing, in XDMF's z y x order. Every case script reads them here, in x y z order:
 
-    import sys, os; sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
-    from xdmf import frames
+    from voigt_post.xdmf import frames   # python/ on sys.path
     for f in frames("output/run"):  # f.t, f.path, f.cells, f.origin, f.spacing (x y z)
 """
 import collections
