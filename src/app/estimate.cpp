@@ -47,6 +47,8 @@ std::string dur(double s) {
 }
 } // namespace
 
+std::string durationText(double seconds) { return dur(seconds); }
+
 Estimate estimateRun(const Scene& scene, MPI_Comm comm, double tEnd, long maxSteps, bool withOutput,
                      int calibrationSteps) {
   Estimate e;

@@ -46,4 +46,7 @@ struct Estimate {
 Estimate estimateRun(const Scene& scene, MPI_Comm comm, double tEnd = -1, long maxSteps = -1,
                      bool withOutput = true, int calibrationSteps = 5);
 
+// A wall time as the estimate prints it: "42 s", "3.5 min", "2.4 h".
+std::string durationText(double seconds);
+
 } // namespace voigt

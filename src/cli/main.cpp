@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/estimate.hpp"
+#include "app/presets_estimate.hpp"
 #include "app/simulation.hpp"
 #include "scene/load.hpp"
 #include "scene/reader.hpp"
@@ -21,12 +22,12 @@ int rankOf() {
   return r;
 }
 
-Scene load(const std::string& path, const std::vector<std::string>& sets) {
+LoadOptions loadOptions(const std::vector<std::string>& sets) {
   LoadOptions lo;
   lo.overrides = sets;
   lo.knownEffects = knownEffectNames();
   lo.extraSections = effectSections();
-  return loadScene(path, lo);
+  return lo;
 }
 
 // --wall-limit: 3h, 170m, 3600s, 3600 (seconds), 2h30m, or SLURM's HH:MM:SS / MM:SS.
@@ -76,7 +77,8 @@ int info() {
   return 0;
 }
 
-int check(const Scene& scene, bool estimate) {
+// --presets: the scene under each preset, loaded again from `path` with `sets` (presets_estimate.hpp).
+int check(const Scene& scene, bool estimate, bool presets, const std::string& path, const std::vector<std::string>& sets) {
   DtLimit dt;
   {
     Simulation sim(scene, MPI_COMM_WORLD);
@@ -93,8 +95,13 @@ int check(const Scene& scene, bool estimate) {
       std::cout << "warning    fixed dt exceeds the stable limit\n";
     std::cout << std::flush;
   }
+  Estimate e;
   if (estimate) {
-    const std::string text = estimateRun(scene, MPI_COMM_WORLD).text();
+    e = estimateRun(scene, MPI_COMM_WORLD);
+    if (rankOf() == 0) std::cout << e.text() << std::flush;
+  }
+  if (presets) { // reuses the scene's calibration when --estimate made one
+    const std::string text = presetsReport(scene, path, loadOptions(sets), MPI_COMM_WORLD, estimate ? &e : nullptr);
     if (rankOf() == 0) std::cout << text;
   }
   return 0;
@@ -161,7 +168,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> sets;
     long steps = -1;
     double endTime = -1;
-    bool overwrite = false, restart = false, estimate = false;
+    bool overwrite = false, restart = false, estimate = false, presets = false;
     std::string restartFrom, wallLimit;
     auto* runCmd = app.add_subcommand("run", "run a scene");
     runCmd->add_option("scene", scenePath, "scene YAML file")->required();
@@ -191,15 +198,19 @@ int main(int argc, char** argv) {
     checkCmd->add_flag("--estimate", estimate,
                        "also estimate the run's steps, memory, disk and wall time from a few calibration steps "
                        "(in memory, nothing written)");
+    checkCmd->add_flag("--presets", presets,
+                       "what accuracy costs here: the value of each preset knob and the estimated steps and wall "
+                       "time of the scene as written and under the presets fast, balanced and accurate (one "
+                       "calibration each); measured errors: perf/accuracy/README.md");
     app.add_subcommand("info", "version, Kokkos backend, MPI ranks");
     try {
       app.parse(int(appArgv.size()), appArgv.data());
       if (app.got_subcommand("info")) {
         code = info();
       } else {
-        Scene scene = load(scenePath, sets);
+        Scene scene = loadScene(scenePath, loadOptions(sets));
         if (app.got_subcommand("check")) {
-          code = check(scene, estimate);
+          code = check(scene, estimate, presets, scenePath, sets);
         } else {
           RunOptions opt;
           opt.outDir = outDir.empty() ? "output/" + scene.name : outDir;
