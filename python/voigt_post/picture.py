@@ -3,7 +3,7 @@ run, one column per output time, the obstacles of the run's scene record in grey
 PNG with VTK (Debian python3-vtk9, python3-h5py; VTK needs an X server, so without DISPLAY the
 command re-runs itself under xvfb-run).
 
-    scripts/picture output/demo -o demo.png [--times 0.1 0.2 0.3] [--field log10_S2]
+    scripts/picture output/demo -o output/demo.png [--times 0.1 0.2 0.3] [--field log10_S2]
     scripts/picture --run output/fb_1000 "mu_S = 1000 Pa" --run output/fb_5000 "mu_S = 5000 Pa" -o b.png
 
 Colour: `--field` (default log10_S2 when the output has it, else none) sampled one cell on the
