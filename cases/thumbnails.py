@@ -1,0 +1,168 @@
+#!/usr/bin/python3
+"""Thumbnails for cases/README.md of the three cases with exact solutions and no picture of their
+own: runs each scene with build/voigt (a few seconds each) into a directory outside the tree and
+draws the numerical result against the exact solution (matplotlib, Agg) into the case's folder:
+
+    channel/thumbnail.png       Couette start-up and Poiseuille profiles u_x(y) against the exact ones
+    shear_wave/thumbnail.png    kinetic energy of shear_wave_tg.yaml against cos^2(c |k| t)
+    taylor_green/thumbnail.png  |u| in the mid z-plane at t = 1, RMS error against the exact vortex
+
+    /usr/bin/python3 cases/thumbnails.py [-o /tmp/voigt-thumbnails] [--voigt build/voigt] [--only CASE ...]
+"""
+import argparse
+import os
+import subprocess
+import sys
+import time
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from voigt_post.xdmf import frames  # noqa: E402
+
+plt.rcParams.update({"font.size": 7, "axes.titlesize": 7, "legend.fontsize": 6})
+
+
+def run(args, scene, name, *extra):
+    """Runs cases/SCENE into OUT/NAME and returns the output directory."""
+    out = os.path.join(args.out, name)
+    t0 = time.time()
+    subprocess.run([args.voigt, "run", os.path.join(HERE, scene), "-o", out, "--overwrite", *extra],
+                   check=True, stdout=subprocess.DEVNULL)
+    print("%-14s %5.1f s  %s" % (name, time.time() - t0, out))
+    return out
+
+
+def velocity(frame):
+    """Node velocity (z, y, x, 3; periodic duplicate nodes included) and the nodes' y."""
+    u = h5py.File(frame.path, "r")["velocity"][...]
+    y = frame.origin[1] + frame.spacing[1] * np.arange(u.shape[1])
+    return u, y
+
+
+def save(fig, case):
+    path = os.path.join(HERE, case, "thumbnail.png")
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    print("%-14s wrote %s (%d bytes)" % ("", os.path.relpath(path, ROOT), os.path.getsize(path)))
+
+
+def couette_exact(y, t, nu=0.1, terms=400):
+    """Start-up Couette flow, U = 1 (cases/channel/README.md)."""
+    n = np.arange(1, terms + 1)[:, None]
+    return y - (2 / np.pi) * np.sum((-1.0) ** (n + 1) / n * np.sin(n * np.pi * y) * np.exp(-nu * (n * np.pi) ** 2 * t), 0)
+
+
+def poiseuille_exact(y, t, g=0.8, nu=0.1, terms=401):
+    """Poiseuille flow from rest: g y (1 - y) / 2 nu less its sine modes (odd n) decaying as exp(-nu n^2 pi^2 t)."""
+    n = np.arange(1, terms + 1, 2)[:, None]
+    return g / (2 * nu) * np.sum(8 / (n * np.pi) ** 3 * np.sin(n * np.pi * y) * (1 - np.exp(-nu * (n * np.pi) ** 2 * t)), 0)
+
+
+def channel(args):
+    cou = frames(run(args, "channel/couette.yaml", "couette"))
+    poi = frames(run(args, "channel/poiseuille.yaml", "poiseuille", "--set", "output.interval=0.5"))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(4, 3), sharey=True)
+    yy = np.linspace(0, 1, 201)
+    for f, c in zip([cou[1], cou[2], cou[-1]], ["C0", "C1", "C2"]):
+        u, y = velocity(f)
+        a.plot(couette_exact(yy, f.t), yy, "-", c=c, lw=0.8)
+        a.plot(u[0, :, 0, 0], y, "o", c=c, ms=2, label="t = %.1f" % f.t)
+        err = u[:-1, :, :-1, :].copy()
+        err[..., 0] -= couette_exact(y, f.t)[None, :, None]
+    rms = np.sqrt(np.mean(np.sum(err ** 2, -1)))
+    a.set_title("start-up Couette, 32 cells\nRMS error %.1e at t = 0.5" % rms)
+    a.set_xlabel("u_x")
+    a.set_ylabel("y")
+    a.legend(loc="lower right", title="o Voigt, - exact series", title_fontsize=6)
+    for f, c in zip([poi[1], poi[3], poi[-1]], ["C0", "C1", "k"]):
+        u, y = velocity(f)
+        b.plot(poiseuille_exact(yy, f.t), yy, "-", c=c, lw=0.8)
+        b.plot(u[0, :, 0, 0], y, "o", c=c, ms=2, label="t = %g" % f.t)
+    dev = np.max(np.abs(u[..., 0] - (0.8 * y * (1 - y) / 0.2)[None, :, None]))
+    b.set_title("Poiseuille from rest, 16 cells\nmax |u - exact| %.0e at t = %g" % (dev, poi[-1].t))
+    b.set_xlabel("u_x")
+    b.set_xlim(-0.04, 1.5)
+    b.legend(loc="lower right", title="- exact: g y(1-y)/2nu\n  less decaying modes", title_fontsize=6)
+    fig.tight_layout()
+    save(fig, "channel")
+
+
+def shear_wave(args):
+    out = run(args, "shear_wave/shear_wave_tg.yaml", "shear_wave_tg")
+    d = np.genfromtxt(os.path.join(out, "timeseries.csv"), delimiter=",", names=True, dtype=None, encoding=None)
+    t, ke = d["t"], d["kinetic_energy"]
+    ke0 = 0.5 * 1e-6 / 2 * 0.0625  # rho U^2 <sin^2 cos^2 + cos^2 sin^2> / 2 x volume, U = 1e-3
+    omega = 2 * np.sqrt(2) * np.pi
+    mins = []  # kinetic-energy minima, parabolic interpolation (as in the README)
+    for i in range(1, len(t) - 1):
+        if ke[i] < ke[i - 1] and ke[i] <= ke[i + 1]:
+            p, q, r = ke[i - 1:i + 2]
+            mins.append(t[i] + 0.5 * (t[i] - t[i - 1]) * (p - r) / (p - 2 * q + r))
+    om = np.pi / np.mean(np.diff(mins))
+    fig, a = plt.subplots(figsize=(4, 3))
+    tt = np.linspace(0, t[-1], 600)
+    a.plot(tt, np.cos(omega * tt) ** 2, "k-", lw=0.8, label="exact cos^2(c|k| t), c|k| = %.4f" % omega)
+    a.plot(t, ke / ke0, "o", c="C0", ms=2, label="Voigt, every step (dt = h/2c)")
+    dt = t[1] - t[0]
+    a.plot(tt, np.cos(om * (tt - dt / 2)) ** 2, "--", c="C0", lw=0.6,
+           label="cos^2(omega (t - dt/2)): tau_S = 0 is at dt/2 (staggered)")
+    a.plot(mins, np.zeros(len(mins)), "|", c="C3", ms=8, label="minima: omega = %.4f (%+.1e)" % (om, om / omega - 1))
+    a.set_xlabel("t")
+    a.set_ylabel("kinetic energy / initial")
+    a.set_ylim(-0.05, 1.3)
+    a.set_title("shear waves in an elastic box (shear_wave_tg.yaml, 32 x 32)\n"
+                "u(0) Taylor-Green, U = 1e-3: u(t) = u(0) cos(c |k| t), |k| = 2 sqrt(2) pi")
+    a.legend(loc="upper center", ncol=1)
+    fig.tight_layout()
+    save(fig, "shear_wave")
+
+
+def taylor_green(args):
+    f = frames(run(args, "taylor_green/taylor_green.yaml", "taylor_green"))[-1]
+    u = h5py.File(f.path, "r")["velocity"][...]
+    nz, ny, nx, _ = u.shape
+    x = f.origin[0] + f.spacing[0] * np.arange(nx)
+    y = f.origin[1] + f.spacing[1] * np.arange(ny)
+    X, Y = np.meshgrid(x, y)
+    amp = np.exp(-2 * 0.05 * f.t)
+    ex = np.stack([amp * np.sin(X) * np.cos(Y), -amp * np.cos(X) * np.sin(Y)], -1)
+    e = u[:-1, :-1, :-1, :].copy()
+    e[..., :2] -= ex[None, :-1, :-1, :]
+    rms = np.sqrt(np.mean(np.sum(e ** 2, -1)))  # as tests/flow/test_taylor_green.cpp
+    mid = u[nz // 2]
+    fig, a = plt.subplots(figsize=(4, 3))
+    im = a.imshow(np.hypot(mid[..., 0], mid[..., 1]), origin="lower", extent=[x[0], x[-1], y[0], y[-1]],
+                  cmap="viridis", interpolation="nearest")
+    s = slice(0, None, 3)
+    a.quiver(X[s, s], Y[s, s], mid[s, s, 0], mid[s, s, 1], color="w", scale=10, width=0.006)
+    fig.colorbar(im, ax=a, label="|u|", shrink=0.9)
+    a.set_xlabel("x")
+    a.set_ylabel("y")
+    a.set_title("Taylor-Green, 32 x 32 x 4, Re = 20: |u| at t = %g, mid z-plane\n"
+                "RMS error vs exact A e^{-2 nu t} (sin x cos y, -cos x sin y): %.2e (%.2f %%)"
+                % (f.t, rms, 100 * rms / amp))
+    fig.tight_layout()
+    save(fig, "taylor_green")
+
+
+CASES = {"channel": channel, "shear_wave": shear_wave, "taylor_green": taylor_green}
+
+if __name__ == "__main__":
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("-o", "--out", default="/tmp/voigt-thumbnails", help="run directory (default %(default)s)")
+    p.add_argument("--voigt", default=os.path.join(ROOT, "build", "voigt"))
+    p.add_argument("--only", nargs="+", choices=sorted(CASES), default=sorted(CASES))
+    args = p.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    t0 = time.time()
+    for name in args.only:
+        CASES[name](args)
+    print("all done in %.1f s" % (time.time() - t0))
