@@ -35,7 +35,7 @@ struct GridGeom {
     VOIGT_UNROLL
     for (int d = 0; d < 3; ++d) {
       const int gi = glob(d, l[d]);
-      w *= (!per[d] & ((gi == 0) | (gi == n[d]))) ? 0.5 : 1.0; // bitwise ops and a select: no branch
+      w *= ((!per[d]) & ((gi == 0) | (gi == n[d]))) ? 0.5 : 1.0; // bitwise ops and a select: no branch
     }
     return w;
   }
