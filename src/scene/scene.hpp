@@ -47,7 +47,10 @@ struct ProjectionCfg {
   enum class Op { Exact, Approximate } op = Op::Exact;
   double tolerance = 1e-8;     // Belos relative residual
   int maxIterations = 1000;
-  std::string preconditioner = "sgs"; // sgs | jacobi | none | multigrid
+  // sgs | jacobi | none | multigrid. Not given (auto): multigrid when the grid has at least
+  // 32^3 cells or two phases of different density, else sgs (scene/load.cpp, why there).
+  std::string preconditioner = "sgs";
+  bool preconditionerAuto = false; // chosen by that rule, not written in the scene
   double damping = 1.0;        // Ifpack2 relaxation damping factor
   int sweeps = 1;
   // Multigrid only: what set-up to keep when the coefficients change (MueLu "reuse: type",

@@ -151,6 +151,7 @@ std::string solverSummary(const ProjectionCfg& P) {
   } else if (P.preconditioner != "none") {
     s += " (" + std::to_string(P.sweeps) + " sweep" + (P.sweeps > 1 ? "s" : "") + ")";
   }
+  if (P.preconditionerAuto) s += " [default: multigrid from 32^3 cells or with two densities, else sgs]";
   char tol[32];
   std::snprintf(tol, sizeof tol, "%g", P.tolerance);
   return s + ", tolerance " + tol + ", at most " + std::to_string(P.maxIterations) + " iterations (then " +
