@@ -56,6 +56,8 @@ std::string knobOrigin(const Scene& s, const PresetKnob& k) {
       origin = kept == std::string::npos ? "preset " + s.preset : n.substr(kept + 2, n.size() - kept - 3);
     }
   if (origin.empty()) origin = treeValue(s, k).empty() ? "default" : "scene or --set";
+  if (origin == "default" && path == "projection.preconditioner" && s.projection.preconditionerAuto)
+    origin = "default by size and phases (multigrid from 32^3 cells or two densities, else sgs)";
   if (path == "time.cfl" && s.time.dt > 0) origin += "; unused: fixed time.dt";
   if (section == "projection" && !hasEffect(s, "navier_stokes")) origin += "; unused: no navier_stokes";
   return origin;
