@@ -154,6 +154,12 @@ std::string Checkpointer::write(long step, const FieldStore& fields, const nlohm
              {"integer", d.isInt}};
   }
   meta["fields"] = fj;
+  // HDF5 metadata writes (the 'effects' attribute, the 'meta' dataset's size) are collective
+  // and need the same arguments on every rank. Some values are each rank's own clock
+  // (wall_seconds_total, the level set's fm_seconds); an attribute of a different length on
+  // each rank made the ranks flush the metadata cache a different number of times, and
+  // H5Fclose deadlocked (a 48^3 falling block at 2 ranks, first checkpoint). Write rank 0's.
+  meta = nlohmann::json::parse(bcastString(g_.comm, meta.dump()));
 
   // Every rank must reach the same verdict, or some would wait in a collective.
   std::string err;

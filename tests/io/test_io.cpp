@@ -1,8 +1,10 @@
 // Output layer: HDF5/XDMF round trip and probe interpolation of linear fields.
+#include "io/checkpoint.hpp"
 #include "io/fields_out.hpp"
 #include "io/probes.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <hdf5.h>
 
 #include <cmath>
@@ -241,6 +243,40 @@ void probeLinear(std::array<int, 3> dims) {
     }
   }
   freeGrid(g);
+}
+
+// A checkpoint whose metadata differs between ranks (wall_seconds_total, the level set's
+// fm_seconds: each rank's clock). HDF5 metadata writes are collective with identical arguments;
+// an 'effects' attribute 300 kB longer on rank 1 hangs H5Fclose without the broadcast (checked:
+// killed after 60 s), as a 48^3 falling block hung at its first checkpoint at 2 ranks
+// (2026-12-03). The file holds rank 0's metadata.
+TEST(Checkpoint, RankDependentMetadata) {
+  Grid g = testGrid();
+  TempDir dir;
+  FieldStore fs;
+  for (int i = 0; i < 12; ++i) fs.declare("f" + std::to_string(i), i % 2 ? Centring::Cell : Centring::Node, i % 3 ? 1 : 3, "test");
+  fs.allocate(g);
+  const int r = worldRank();
+  nlohmann::json meta = {{"t", 0.5}, {"wall_seconds_total", 1.0 + 0.123456789 * r}, {"note", std::string(5 + 7 * r, 'x')},
+                         {"effects", {{"state", std::string(10 + 300000 * r, 'y')}}}}; // an attribute: metadata
+  const std::string path = Checkpointer(g, dir.path, 2).write(7, fs, meta);
+  if (r == 0) {
+    hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(f, 0) << path;
+    hid_t ds = H5Dopen2(f, "meta", H5P_DEFAULT);
+    hid_t sp = H5Dget_space(ds);
+    hsize_t n = 0;
+    H5Sget_simple_extent_dims(sp, &n, nullptr);
+    std::string text(n, ' ');
+    H5Dread(ds, H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data());
+    H5Sclose(sp);
+    H5Dclose(ds);
+    H5Fclose(f);
+    const auto j = nlohmann::json::parse(text);
+    EXPECT_EQ(j["note"].get<std::string>(), "xxxxx");
+    EXPECT_EQ(j["wall_seconds_total"].get<double>(), 1.0);
+    EXPECT_EQ(j["effects"]["state"].get<std::string>().size(), 10u);
+  }
 }
 
 TEST(ProbeSet, LinearFieldsAreExact) { probeLinear({0, 0, 0}); }
