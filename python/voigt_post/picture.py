@@ -33,8 +33,8 @@ def _headless():
     env = dict(os.environ, VOIGT_RENDER_CHILD="1")
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                                       env.get("PYTHONPATH")]))
-    here = os.path.abspath(sys.argv[0]) == os.path.abspath(__file__)   # run as python -m voigt_post.picture
-    cmd = [sys.executable] + (["-m", __name__ if __name__ != "__main__" else "voigt_post.picture"] if here else [sys.argv[0]])
+    as_module = os.path.abspath(sys.argv[0]) == os.path.abspath(__file__)   # python -m voigt_post.picture
+    cmd = [sys.executable] + (["-m", "voigt_post.picture"] if as_module else [sys.argv[0]])
     sys.exit(subprocess.call(["xvfb-run", "-a", "-s", "-screen 0 1920x1080x24"] + cmd + sys.argv[1:], env=env))
 
 

@@ -14,22 +14,9 @@ SETS=(--set "domain.cells=[8,8,8]" --set time.dt=0.005 --set time.end=0.2 --set 
 STEPS=40 # 0.2 / 0.005
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/voigt_estimate_XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
-fail() {
-  echo "FAIL: $*"
-  tail -20 "$WORK"/*.log
-  exit 1
-}
-run() { # run LOG ARGS...: sets RC
-  local log=$1
-  shift
-  if [ "$NP" -gt 1 ]; then
-    mpirun --allow-run-as-root --oversubscribe -np "$NP" "$VOIGT" "$@" > "$log" 2>&1
-  else
-    "$VOIGT" "$@" > "$log" 2>&1
-  fi
-  RC=$?
-}
-json() { python3 -c "import json,sys;print(json.load(open(sys.argv[1]))$2)" "$1"; }
+FAIL_TAIL=20
+# shellcheck source=../support/voigt_run.sh
+. "$SRC/tests/support/voigt_run.sh"
 positive() { python3 -c "import sys;sys.exit(0 if float(sys.argv[1]) > 0 else 1)" "$1" 2>/dev/null; }
 
 run "$WORK/check.log" check "$SCENE" --estimate "${SETS[@]}"

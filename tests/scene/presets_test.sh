@@ -13,21 +13,9 @@ NP=$3
 SCENE=$SRC/tests/scene/presets_cost.yaml
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/voigt_presets_XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
-fail() {
-  echo "FAIL: $*"
-  tail -40 "$WORK"/*.log
-  exit 1
-}
-run() { # run LOG ARGS...: sets RC
-  local log=$1
-  shift
-  if [ "$NP" -gt 1 ]; then
-    mpirun --allow-run-as-root --oversubscribe -np "$NP" "$VOIGT" "$@" > "$log" 2>&1
-  else
-    "$VOIGT" "$@" > "$log" 2>&1
-  fi
-  RC=$?
-}
+FAIL_TAIL=40
+# shellcheck source=../support/voigt_run.sh
+. "$SRC/tests/support/voigt_run.sh"
 has() { grep -Eq "$1" "$LOG" || fail "no line matching '$1' in $(basename "$LOG")"; }
 count() { grep -Ec "$1" "$LOG"; }
 steps() { sed -En "s/^           $1 +([0-9]+).*/\1/p" "$LOG"; } # from the summary table

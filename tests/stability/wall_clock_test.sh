@@ -20,22 +20,9 @@ BIG=100000000 # steps the limited runs never reach
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/voigt_wall_XXXXXX")
 [ -n "${VOIGT_KEEP_WORK:-}" ] || trap 'rm -rf "$WORK"' EXIT
 
-fail() {
-  echo "FAIL: $*"
-  for f in "$WORK"/*.log; do echo "--- $f"; tail -5 "$f"; done
-  exit 1
-}
-run() { # run LOG ARGS...: voigt in the foreground; sets RC
-  local log=$1
-  shift
-  if [ "$NP" -gt 1 ]; then
-    mpirun --allow-run-as-root --oversubscribe -np "$NP" "$VOIGT" "$@" > "$log" 2>&1
-  else
-    "$VOIGT" "$@" > "$log" 2>&1
-  fi
-  RC=$?
-}
-json() { python3 -c "import json,sys;print(json.load(open(sys.argv[1]))$2)" "$1"; }
+FAIL_TAIL=5
+# shellcheck source=../support/voigt_run.sh
+. "$SRC/tests/support/voigt_run.sh"
 ck() { printf "checkpoint_%09d.h5" "$1"; }
 # A stop at the wall limit: exit code 75 (mpirun passes the ranks' code on), the
 # message, summary.json, and the checkpoint `latest` names at the step reached.
