@@ -1,7 +1,7 @@
 """The run ledger of a study (cases/<name>/runs.csv, committed): one row per run, so how far
 each long run got is known even when the machine that ran it is gone. Used by cases/study.sh.
 
-    runs.py id SCENE MODULUS MODEL [KEY=VALUE ...]   -> "RUN_ID GRID" (the --set values win)
+    runs.py id SCENE MODULUS MODEL [KEY=VALUE ...]   -> "RUN_ID GRID MODEL+CORRECTION" (the --set values win)
     runs.py seconds DURATION                         -> seconds (3h, 170m, 3600s, 3600, 02:50:00)
     runs.py state DIR                                -> new | unfinished | finished | failed
     runs.py start LEDGER RUN_ID MODULUS MODEL GRID RANKS   (the row says "running")
@@ -30,6 +30,16 @@ def grid_of(scene, sets):
     with open(scene) as f:
         m = re.search(r"^\s+cells:\s*\[([^\]]*)\]", f.read(), re.M)
     return "x".join(re.findall(r"\d+", m.group(1)))
+
+
+def tagged_model(model, sets):
+    """The fluid-side model with the level set's volume correction: "integrate+global" (the
+    default since 2026-12-03) or "integrate+none". Rows from before hold the bare name (none)."""
+    corr = "global"
+    for s in sets:
+        if s.startswith("level_set.volume_correction="):
+            corr = s.split("=", 1)[1].strip()
+    return "%s+%s" % (model, corr)
 
 
 def run_id(modulus, model, grid):
@@ -120,7 +130,8 @@ def main(argv):
     cmd, args = argv[1], argv[2:]
     if cmd == "id":
         grid = grid_of(args[0], args[3:])
-        print(run_id(args[1], args[2], grid), grid)
+        model = tagged_model(args[2], args[3:])
+        print(run_id(args[1], model, grid), grid, model)
     elif cmd == "seconds":
         try:
             print(max(1, round(seconds(args[0]))))  # whole seconds: for the shell's arithmetic

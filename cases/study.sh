@@ -79,7 +79,7 @@ study_stop() {
 # ledger cases/<name>/runs.csv; --resume continues the unfinished runs there first (selected
 # or not: their .args say how), then starts those not begun, and skips the finished.
 study_runs() {
-  local sets mu model id grid name st all wl fresh=() failed=0
+  local sets mu model id grid tagged name st all wl fresh=() failed=0
   todo=()  # also read by study_stop
   name="$(basename "$(dirname "$study_scene")")"
   runs="$root/cases/runs.py"
@@ -109,12 +109,12 @@ study_runs() {
   for mu in $moduli; do
     for model in $models; do
       all=(--set "$study_key=$mu" --set "elasticity.fluid_side=$model" "${sets[@]}" "${user_sets[@]}")
-      read -r id grid < <("$py" "$runs" id "$study_scene" "$mu" "$model" "${all[@]}")
+      read -r id grid tagged < <("$py" "$runs" id "$study_scene" "$mu" "$model" "${all[@]}")
       selected+=("$id")
       st=$("$py" "$runs" state "$out/$id")
       if [ "$resume" = 1 ] && [ "$st" = finished ]; then echo "== $id: finished, skipped"; continue; fi
       if [ "$resume" = 1 ] && [ "$st" = unfinished ] && [ -f "$out/$id.args" ]; then continue; fi
-      printf '%s\n' "$mu $model $grid" "${all[@]}" > "$out/$id.args"
+      printf '%s\n' "$mu $tagged $grid" "${all[@]}" > "$out/$id.args"
       if [ "$resume" = 1 ] && [ "$st" = unfinished ]; then todo+=("$id"); else fresh+=("$id"); fi
     done
   done
@@ -135,7 +135,7 @@ study_figure_runs() {
   for mu in $moduli; do
     for id in "${selected[@]}"; do
       # shellcheck disable=SC2059
-      if [[ "$id" == "mu${mu}_$1_"* ]]; then fig_runs+=(--run "$out/$id" "$(printf "$2" "$mu")"); fi
+      if [[ "$id" == "mu${mu}_$1+"* ]]; then fig_runs+=(--run "$out/$id" "$(printf "$2" "$mu")"); fi
     done
   done
   fig_dir="$out"

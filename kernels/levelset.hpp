@@ -96,4 +96,69 @@ inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double 
   return {vol, sharp, area};
 }
 
+// Global volume correction (level_set.volume_correction, effects/level_set/volume.cpp).
+// Local sums over owned cells of H(psi + s) dv and dH/dpsi(psi + s) dv: the
+// phase-1 volume after a uniform shift s and its derivative (Newton's step).
+inline void localShiftedVolume(const Grid& g, const Field& psi, double kappa, double s, double& vol, double& dvol) {
+  const double dv = g.cellVolume();
+  double v = 0, d = 0;
+  Kokkos::parallel_reduce(
+      "shifted_volume", cellRange(g).policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, double& va, double& da) {
+        const double p = psi(i, j, k) + s;
+        va += smoothedHeaviside(p, kappa);
+        da += smoothedDelta(p, kappa);
+      },
+      v, d);
+  vol = v * dv;
+  dvol = d * dv;
+}
+
+// psi += s on every cell, ghosts included: s is the same on every rank and a
+// uniform shift commutes with the even (mirror) ghost fill, so no exchange.
+inline void shiftField(const Grid& g, const Field& psi, double s) {
+  for_each3("shift_psi", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}},
+      KOKKOS_LAMBDA(int i, int j, int k) { psi(i, j, k) += s; });
+}
+
+// Outward flux of the phase-1 volume through the open faces of the domain
+// (open[f], f = 2 axis + side): sum over this rank's boundary cells of
+// H(psi_c) (u.n) dA, u.n the mean of the face's 4 node velocities, as in the
+// advection's face speed. Needs u on the boundary nodes.
+inline double localOpenBoundaryFlux(const Grid& g, const Field& psi, const VecField& u, double kappa,
+                                    const bool open[6]) {
+  double total = 0;
+  for (int f = 0; f < 6; ++f) {
+    const int d = f / 2, side = f % 2;
+    if (!open[f] || !(side == 0 ? g.atLo(d) : g.atHi(d))) continue;
+    Range3 r = cellRange(g);
+    const int cell = side == 0 ? g.ng : g.ng + g.ln[d] - 1;
+    r.b[d] = cell;
+    r.e[d] = cell + 1;
+    const int a = (d + 1) % 3, b = (d + 2) % 3;
+    const double area = g.h[a] * g.h[b], sign = side == 0 ? -1.0 : 1.0;
+    const int node = cell + side; // the face's node layer along d
+    const auto ud = u.c[d];
+    double sum = 0;
+    Kokkos::parallel_reduce(
+        "open_boundary_flux", r.policy(),
+        KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+          int n0[3] = {i, j, k};
+          n0[d] = node;
+          double un = 0;
+          VOIGT_UNROLL
+          for (int c = 0; c < 4; ++c) {
+            int n[3] = {n0[0], n0[1], n0[2]};
+            n[a] += c & 1;
+            n[b] += (c >> 1) & 1;
+            un += 0.25 * ud(n[0], n[1], n[2]);
+          }
+          acc += smoothedHeaviside(psi(i, j, k), kappa) * sign * un * area;
+        },
+        sum);
+    total += sum;
+  }
+  return total;
+}
+
 } // namespace voigt

@@ -2,7 +2,9 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/field.hpp"
 
@@ -22,8 +24,20 @@ const char* toString(Stage s) {
   return "?";
 }
 
-void Pipeline::add(Stage s, const std::string& effect, const std::string& name, Fn fn) {
-  tasks_[s].push_back(Task{effect, name, std::move(fn)});
+void Pipeline::add(Stage s, const std::string& effect, const std::string& name, Fn fn,
+                   std::vector<std::string> after) {
+  auto& ts = tasks_[s];
+  auto pos = ts.end();
+  for (auto it = ts.begin(); it != ts.end(); ++it)
+    if (std::find(it->after.begin(), it->after.end(), effect) != it->after.end()) {
+      pos = it;
+      break;
+    }
+  // A task placed early must not land before an effect it follows itself.
+  for (auto it = pos; it != ts.end(); ++it)
+    if (std::find(after.begin(), after.end(), it->effect) != after.end())
+      throw std::logic_error("pipeline: " + effect + " and " + it->effect + " each declare the other first");
+  ts.insert(pos, Task{effect, name, std::move(fn), std::move(after)});
 }
 
 const std::vector<Pipeline::Task>& Pipeline::tasks(Stage s) const {

@@ -23,9 +23,13 @@ class Pipeline {
   struct Task {
     std::string effect, name;
     Fn fn;
+    std::vector<std::string> after; // effects whose tasks in this stage must run first
   };
-  void add(Stage s, const std::string& effect, const std::string& name, Fn fn);
-  // Runs the tasks of one stage in registration order, timing each.
+  // Appends the task to its stage, except that it goes before the first task
+  // that declared `after` its effect; `after` names effects (absent ones are
+  // ignored) that must run before this task, whichever registers first.
+  void add(Stage s, const std::string& effect, const std::string& name, Fn fn, std::vector<std::string> after = {});
+  // Runs the tasks of one stage in order, timing each.
   void run(Stage s, State& st);
   const std::vector<Task>& tasks(Stage s) const;
   bool empty(Stage s) const { return tasks(s).empty(); }

@@ -31,14 +31,29 @@ bool rank0() {
   return r == 0;
 }
 
-enum class Mode { NoReinit, Constrained, Unconstrained };
+// The first three are the level set without the global volume correction
+// (level_set.volume_correction: none); the Global modes add it (the default).
+enum class Mode { NoReinit, Constrained, Unconstrained, GlobalConstrained, GlobalUnconstrained, GlobalNoReinit };
 const char* modeName(Mode m) {
-  return m == Mode::NoReinit ? "no_reinit" : m == Mode::Constrained ? "constrained" : "unconstrained";
+  switch (m) {
+    case Mode::NoReinit: return "no_reinit";
+    case Mode::Constrained: return "constrained";
+    case Mode::Unconstrained: return "unconstrained";
+    case Mode::GlobalConstrained: return "global+constrained";
+    case Mode::GlobalUnconstrained: return "global+unconstrained";
+    case Mode::GlobalNoReinit: return "global+no_reinit";
+  }
+  return "?";
 }
+bool globalCorrection(Mode m) {
+  return m == Mode::GlobalConstrained || m == Mode::GlobalUnconstrained || m == Mode::GlobalNoReinit;
+}
+const char* correctionFor(Mode m) { return globalCorrection(m) ? "global" : "none"; }
 std::string effectsFor(Mode m) {
-  if (m == Mode::NoReinit) return "effects: [prescribed_flow, level_set]\n";
+  if (m == Mode::NoReinit || m == Mode::GlobalNoReinit) return "effects: [prescribed_flow, level_set]\n";
+  const bool con = m == Mode::Constrained || m == Mode::GlobalConstrained;
   return std::string("effects: [prescribed_flow, level_set, reinit]\n") +
-         (m == Mode::Constrained ? "reinit: {volume_constraint: true}\n" : "reinit: {volume_constraint: false}\n");
+         (con ? "reinit: {volume_constraint: true}\n" : "reinit: {volume_constraint: false}\n");
 }
 
 // A square [0, side]^2 of n^2 cells, 2 cubic cells along periodic z.
@@ -68,6 +83,7 @@ std::string zalesakScene(int n, Mode m) {
          "prescribed_flow: {type: rotation, center: [50, 50, 0], omega: [0, 0, 0.010005072145190]}\n"
          "level_set:\n"
          "  phase: disk\n"
+         "  volume_correction: " + correctionFor(m) + "\n"
          "  fast_marching: false\n"
          "  shape:\n"
          "    type: intersection\n"
@@ -106,7 +122,7 @@ std::string vortexScene(int n, double T, Mode m) {
   return "name: single_vortex\n" + domain(1, n) + tp +
          "materials: {blob: {density: 1, viscosity: 0}, air: {density: 1, viscosity: 0}}\n"
          "fluid: air\n" + effectsFor(m) +
-         "level_set: {phase: blob, fast_marching: false,\n"
+         "level_set: {phase: blob, fast_marching: false, volume_correction: " + correctionFor(m) + ",\n"
          "            shape: {type: cylinder, center: [0.5, 0.75, 0], radius: 0.15, axis: z}}\n"
          "output: {enabled: false}\n";
 }

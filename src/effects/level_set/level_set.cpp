@@ -27,6 +27,8 @@ void LevelSet::configure(const Scene& s) {
   shape_ = compileShape(ls, "shape", s);
   // Default: march unless the shape is already an exact distance.
   fastMarching_ = ls.boolean("fast_marching", !shape_.exactDistance);
+  globalCorrection_ = ls.choice("volume_correction", "global", {"global", "none"}) == "global";
+  for (int f = 0; f < 6; ++f) open_[f] = s.bc[f].type == BcType::Inflow || s.bc[f].type == BcType::Outflow;
   ls.finish();
   const std::string& l = s.advection.limiter;
   limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
@@ -51,6 +53,12 @@ void LevelSet::setup(State& st) {
   blend(st);
   diagnose(st);
   volume0_ = volume_;
+  target_ = volume_;
+  shiftTotal_ = movedTotal_ = 0;
+  if (globalCorrection_) {
+    st.diag["volume_shift_cells"] = 0;
+    st.diag["volume_corrected"] = 0;
+  }
   sharpVolume0_ = sharpVolume_;
   driftMax_ = 0;
   st.diag["volume_drift"] = 0;
@@ -59,7 +67,8 @@ void LevelSet::setup(State& st) {
 void LevelSet::saveState(nlohmann::json& j) const {
   j = {{"volume0", volume0_}, {"volume", volume_}, {"sharp_volume0", sharpVolume0_}, {"sharp_volume", sharpVolume_},
        {"area", area_}, {"drift_max", driftMax_}, {"fm_initial_cells", fm_.initialCells},
-       {"fm_accepted_cells", fm_.acceptedCells}, {"fm_seconds", fm_.seconds}};
+       {"fm_accepted_cells", fm_.acceptedCells}, {"fm_seconds", fm_.seconds}, {"volume_target", target_},
+       {"shift_total", shiftTotal_}, {"moved_total", movedTotal_}};
 }
 
 void LevelSet::loadState(const nlohmann::json& j) {
@@ -69,6 +78,9 @@ void LevelSet::loadState(const nlohmann::json& j) {
   sharpVolume_ = j.at("sharp_volume").get<double>();
   area_ = j.at("area").get<double>();
   driftMax_ = j.at("drift_max").get<double>();
+  target_ = j.value("volume_target", volume0_); // checkpoints from before the correction
+  shiftTotal_ = j.value("shift_total", 0.0);
+  movedTotal_ = j.value("moved_total", 0.0);
   fm_.initialCells = j.value("fm_initial_cells", fm_.initialCells);
   fm_.acceptedCells = j.value("fm_accepted_cells", fm_.acceptedCells);
   fm_.seconds = j.value("fm_seconds", fm_.seconds);
@@ -77,6 +89,9 @@ void LevelSet::loadState(const nlohmann::json& j) {
 void LevelSet::registerTasks(Pipeline& p) {
   p.add(Stage::Properties, name(), "density and viscosity from H(psi), Eq. (2)-(4)", [this](State& st) { blend(st); });
   p.add(Stage::Advection, name(), "psi: SSP-RK2 + MUSCL/KT, Eq. (1)", [this](State& st) { advect(st); });
+  if (globalCorrection_)
+    p.add(Stage::Corrections, name(), "global volume correction: psi += s so that INT H(psi) = V0 - outflow",
+          [this](State& st) { correctVolume(st); }, {"reinit"});
   p.add(Stage::Diagnostics, name(), "phase volumes, drift, interface area", [this](State& st) { diagnose(st); });
 }
 
@@ -96,6 +111,10 @@ void LevelSet::summary(const State& st, nlohmann::json& j) const {
                     {"sharp_volume_initial", sharpVolume0_},
                     {"sharp_volume", sharpVolume_},
                     {"interface_area", area_},
+                    {"volume_correction", globalCorrection_ ? "global" : "none"},
+                    {"volume_target", target_},
+                    {"shift_total", shiftTotal_},
+                    {"volume_corrected", volume0_ != 0 ? movedTotal_ / volume0_ : 0.0},
                     {"fast_marching",
                      {{"enabled", fastMarching_},
                       {"initial_cells", fm_.initialCells},

@@ -5,6 +5,7 @@
 //   level_set.cpp  scene section, fields, initial shape + Fast Marching, summary
 //   advect.cpp     Eq. (1) advection (Advection stage), Eq. (2)-(4) blending
 //                  (Properties stage), volume and area diagnostics
+//   volume.cpp     global volume correction (Corrections stage, after reinit)
 #include "effects/effect.hpp"
 #include "kernels/advection.hpp"
 #include "levelset/fast_marching.hpp"
@@ -30,6 +31,7 @@ class LevelSet : public Effect {
   void advect(State& st);
   void blend(State& st);
   void diagnose(State& st);
+  void correctVolume(State& st);
 
  private:
   void refreshGhosts(State& st, const Field& f) const;
@@ -43,6 +45,11 @@ class LevelSet : public Effect {
   Limiter limiter_ = Limiter::MinMod;
   FluxScratch flux_; // face fluxes of the transport (kernels/advection_faces.hpp)
   FastMarchingStats fm_;
+  bool globalCorrection_ = true; // level_set.volume_correction: global (default) or none
+  bool open_[6] = {};            // faces through which phase 1 may leave (inflow/outflow)
+  double target_ = 0;            // volume the correction holds: V0 minus what left through open faces
+  double shiftTotal_ = 0;        // sum of |shift| over the run (length)
+  double movedTotal_ = 0;        // sum of |shift| x INT H' over the run (volume)
   double volume0_ = 0, volume_ = 0, sharpVolume0_ = 0, sharpVolume_ = 0, area_ = 0, driftMax_ = 0;
 };
 
