@@ -17,7 +17,7 @@ study_usage() { awk 'NR > 1 && !/^#/ { exit } NR > 1' "$0"; }
 study_value() { [ -n "${2-}" ] || { echo "run: $1 needs a value (see --help)" >&2; exit 2; }; }
 
 study_parse() {
-  quick=0 ranks=1 out="" moduli="$study_moduli" models=integrate resume=0 figures=1 user_sets=() wall_limit=""
+  quick=0 ranks=1 out="" moduli="$study_moduli" models=extend resume=0 figures=1 user_sets=() wall_limit=""
   while [ $# -gt 0 ]; do
     case "$1" in
       --quick) quick=1 ;;

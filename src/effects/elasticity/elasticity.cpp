@@ -8,7 +8,7 @@
 //                band: cells beyond H > 0 where the stress kernels run (default 3),
 //                rotation: cayley | explicit (default cayley): how Eq. (16)'s half
 //                  rotations are applied (kernels/elastic.hpp header),
-//                fluid_side: integrate | extend | blend (default integrate): the
+//                fluid_side: integrate | extend | blend (default extend): the
 //                  stress of the band's fluid side (elasticity.hpp header)}
 #include "effects/elasticity/elasticity.hpp"
 
@@ -57,7 +57,7 @@ void Elasticity::configure(const Scene& s) {
   bandCells_ = sec.number("band", 3, Range::nonNegative());
   rotation_ = sec.choice("rotation", "cayley", {"cayley", "explicit"}) == "explicit" ? elastic::Rotation::Explicit
                                                                                       : elastic::Rotation::Cayley;
-  side_ = sec.choice("fluid_side", "integrate", {"integrate", "extend", "blend"});
+  side_ = sec.choice("fluid_side", "extend", {"integrate", "extend", "blend"});
   extend_ = side_ != "integrate";
   const Section is = sec.section("initial_stress");
   const char* keys[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
