@@ -268,8 +268,8 @@ void BM_HaloVector(benchmark::State& s) {
 }
 // --- Poisson (Tpetra through PoissonSolver) ---
 std::unique_ptr<PoissonSolver> solver(bool exact, const char* pc, int maxIt) {
-  ProjectionCfg cfg;
-  cfg.op = exact ? ProjectionCfg::Op::Exact : ProjectionCfg::Op::Approximate;
+  PoissonSettings cfg;
+  cfg.op = exact ? PoissonSettings::Op::Exact : PoissonSettings::Op::Approximate;
   cfg.preconditioner = pc;
   cfg.tolerance = 1e-30; // never converges: always maxIt iterations
   cfg.maxIterations = maxIt;

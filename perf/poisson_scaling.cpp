@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "common.hpp"
+#include "effects/navier_stokes/navier_stokes.hpp" // poissonSettings()
 #include "solvers/poisson.hpp"
 
 using namespace voigt;
@@ -51,7 +52,7 @@ std::vector<Solve> runSteps(const Scene& s, int M, bool zeroCold, std::vector<do
   nullModes = j["poisson"]["null_modes"].get<int>();
   nnz = j["poisson"]["matrix_nonzeros"].get<long long>();
   if (zeroCold) { // set-up cost on a separate solver with this state's coefficients
-    auto ps = makePoissonSolver(sim.state().grid, s.projection);
+    auto ps = makePoissonSolver(sim.state().grid, poissonSettings(s.projection));
     const VecField coef = sim.state().fields.vector("proj_coef");
     MPI_Barrier(MPI_COMM_WORLD);
     double t0 = MPI_Wtime();

@@ -10,7 +10,7 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
-#include "scene/scene.hpp"
+#include "solvers/solver_settings.hpp"
 
 namespace voigt {
 
@@ -55,6 +55,6 @@ class PoissonSolver {
 };
 
 // Collective over g.comm. The solver keeps its own duplicate of the communicator.
-std::unique_ptr<PoissonSolver> makePoissonSolver(const Grid& g, const ProjectionCfg& cfg);
+std::unique_ptr<PoissonSolver> makePoissonSolver(const Grid& g, const PoissonSettings& cfg);
 
 } // namespace voigt

@@ -52,13 +52,13 @@ void vecToField(Vector& v, const Field& f, CellRows rw, Range3 cells) {
 
 class TpetraPoisson final : public PoissonSolver {
  public:
-  TpetraPoisson(const Grid& g, const ProjectionCfg& cfg)
+  TpetraPoisson(const Grid& g, const PoissonSettings& cfg)
       : geom_(g), rows_{g.ng, g.ln[0], g.ln[1]}, cells_(cellRange(g)), cfg_(cfg) {
     MPI_Comm dup;
     MPI_Comm_dup(g.comm, &dup); // owned by Teuchos, freed with the last Map
     comm_ = dup;
     tcomm_ = Teuchos::rcp(new Teuchos::MpiComm<int>(Teuchos::opaqueWrapper(dup, MPI_Comm_free)));
-    exact_ = cfg.op == ProjectionCfg::Op::Exact;
+    exact_ = cfg.op == PoissonSettings::Op::Exact;
     nrows_ = (int)g.cellsOwned();
     buildGraph(g);
     A_ = Teuchos::rcp(new Matrix(graph_));
@@ -346,7 +346,7 @@ class TpetraPoisson final : public PoissonSolver {
   GridGeom geom_;
   CellRows rows_;
   Range3 cells_;
-  ProjectionCfg cfg_;
+  PoissonSettings cfg_;
   bool exact_ = true, ready_ = false;
   int nrows_ = 0;
   MPI_Comm comm_ = MPI_COMM_NULL; // the duplicate held by tcomm_
@@ -372,7 +372,7 @@ class TpetraPoisson final : public PoissonSolver {
 
 } // namespace
 
-std::unique_ptr<PoissonSolver> makePoissonSolver(const Grid& g, const ProjectionCfg& cfg) {
+std::unique_ptr<PoissonSolver> makePoissonSolver(const Grid& g, const PoissonSettings& cfg) {
   return std::make_unique<TpetraPoisson>(g, cfg);
 }
 

@@ -134,8 +134,8 @@ inline double maxAbs(const Case& c, const Field& a, const Field& b = Field(), do
   return m;
 }
 
-inline ProjectionCfg cfgOf(ProjectionCfg::Op op, double tol, const char* pc = "sgs") {
-  ProjectionCfg cfg;
+inline PoissonSettings cfgOf(PoissonSettings::Op op, double tol, const char* pc = "sgs") {
+  PoissonSettings cfg;
   cfg.op = op;
   cfg.tolerance = tol;
   cfg.maxIterations = 3000;
@@ -178,7 +178,7 @@ inline Projection project(const Case& c, PoissonSolver& s, const VecField& coef,
   return p;
 }
 
-inline const char* opName(ProjectionCfg::Op op) { return op == ProjectionCfg::Op::Exact ? "exact" : "approx"; }
+inline const char* opName(PoissonSettings::Op op) { return op == PoissonSettings::Op::Exact ? "exact" : "approx"; }
 
 // Dense A (global rows x global columns, lexicographic cell index), assembled
 // column by column through apply(); identical on every rank.

@@ -48,14 +48,14 @@ struct Run {
   PoissonStats st;
 };
 
-void movingJump(ProjectionCfg::Op op, int n, bool movingObstacle) {
+void movingJump(PoissonSettings::Op op, int n, bool movingObstacle) {
   Case c({n, n, n});
   const double dt = 0.1;
   std::vector<Run> runs;
   for (const char* r : {"none", "S", "tP", "RP", "RAP"}) runs.push_back({r, 0, nullptr, Field(), {}});
   runs.push_back({"RAP", 3, nullptr, Field(), {}}); // full rebuild every 3rd update
   for (auto& r : runs) {
-    ProjectionCfg cfg = cfgOf(op, kTol, "multigrid");
+    PoissonSettings cfg = cfgOf(op, kTol, "multigrid");
     cfg.multigridReuse = r.reuse;
     cfg.multigridRefresh = r.refresh;
     r.solver = makePoissonSolver(c.g, cfg);
@@ -112,21 +112,21 @@ void movingJump(ProjectionCfg::Op op, int n, bool movingObstacle) {
   }
 }
 
-TEST(MultigridReuse, MovingDensityJumpApproximate) { movingJump(ProjectionCfg::Op::Approximate, 24, false); }
+TEST(MultigridReuse, MovingDensityJumpApproximate) { movingJump(PoissonSettings::Op::Approximate, 24, false); }
 // Multigrid on the 27-point exact operator needs hundreds of iterations (measured before the
 // checkerboard near-null vector: 226-314 at 16^3, 657 at 24^3, against ~30 on the 7-point
 // one; with it, 2026-12-03: 46-194 with none, S, tP and RP, but 559-1047 with RAP, whose kept
 // coarse levels miss the moved jump): a small grid keeps this test short (16^3 still gives
 // MueLu a coarse level, 12^3 would not).
-TEST(MultigridReuse, MovingDensityJumpExact) { movingJump(ProjectionCfg::Op::Exact, 16, false); }
-TEST(MultigridReuse, MovingObstacleRebuilds) { movingJump(ProjectionCfg::Op::Approximate, 24, true); }
+TEST(MultigridReuse, MovingDensityJumpExact) { movingJump(PoissonSettings::Op::Exact, 16, false); }
+TEST(MultigridReuse, MovingObstacleRebuilds) { movingJump(PoissonSettings::Op::Approximate, 24, true); }
 
 // MueLu's "full" keeps the fine smoother's inverse diagonal while A changes in place:
 // CG broke down at the first iteration after the slab moved. Not offered.
 TEST(MultigridReuse, UnsafeTypesRejected) {
   Case c({8, 8, 8});
   for (const char* r : {"full", "emin", "tp"}) {
-    ProjectionCfg cfg = cfgOf(ProjectionCfg::Op::Approximate, kTol, "multigrid");
+    PoissonSettings cfg = cfgOf(PoissonSettings::Op::Approximate, kTol, "multigrid");
     cfg.multigridReuse = r;
     EXPECT_THROW(makePoissonSolver(c.g, cfg), std::invalid_argument) << r;
   }

@@ -14,7 +14,7 @@ TEST(Poisson, ExactProjection) {
     Case c({16, 12, 14}, {false, false, cs == 1}, {1, 0.9, 1.2});
     auto coef = makeCoef(c, {cs == 1 ? 3 : -1, true});
     auto ustar = makeVelocity(c, coef);
-    auto s = makePoissonSolver(c.g, cfgOf(ProjectionCfg::Op::Exact, 1e-10));
+    auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-10));
     const double dt = 0.05;
     auto p = project(c, *s, coef, ustar, dt);
     EXPECT_TRUE(p.st.converged);
@@ -59,7 +59,7 @@ TEST(Poisson, IncompatibleMovingFace) {
           if (gj == G.n[1] && gi >= e && gi <= G.n[0] - e && gk >= e && gk <= G.n[2] - e) ux(i, j, k) = 1;
         });
     Kokkos::fence();
-    auto s = makePoissonSolver(c.g, cfgOf(ProjectionCfg::Op::Exact, 1e-10, row.pc));
+    auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-10, row.pc));
     const double dt = 0.03;
     auto p = project(c, *s, coef, ustar, dt);
     const std::string what = std::to_string(row.n) + (row.leaky ? " leaky " : " ") + row.pc;
@@ -85,7 +85,7 @@ TEST(Poisson, RoundoffRhs) {
   Case c({12, 12, 12});
   auto coef = makeCoef(c, {-1, true});
   auto ustar = makeVelocity(c, coef);
-  auto s = makePoissonSolver(c.g, cfgOf(ProjectionCfg::Op::Exact, 1e-10));
+  auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-10));
   auto p = project(c, *s, coef, ustar, 0.1); // dp = O(1) solution
   const double dpMax = maxAbs(c, p.dp);
   Field b = c.cell("b"), x = c.cell("x");
@@ -143,7 +143,7 @@ TEST(Poisson, RoundoffRhs) {
 TEST(Poisson, BreakdownIsReported) {
   Case c({12, 12, 12});
   auto coef = makeCoef(c, {-1, true});
-  auto cfg = cfgOf(ProjectionCfg::Op::Exact, 1e-18);
+  auto cfg = cfgOf(PoissonSettings::Op::Exact, 1e-18);
   cfg.maxIterations = 2000;
   auto s = makePoissonSolver(c.g, cfg);
   s->setCoefficients(coef);
@@ -172,7 +172,7 @@ TEST(Poisson, ApproximateOrder) {
     Case c({n, n, n});
     auto coef = makeCoef(c, {});
     auto ustar = makeVelocity(c, coef);
-    auto s = makePoissonSolver(c.g, cfgOf(ProjectionCfg::Op::Approximate, 1e-12));
+    auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Approximate, 1e-12));
     auto p = project(c, *s, coef, ustar, 0.1);
     EXPECT_TRUE(p.st.converged);
     err[m] = maxAbs(c, p.div) / p.divStar;
@@ -185,7 +185,7 @@ TEST(Poisson, ApproximateOrder) {
 
 // (e) Obstacle: cells with all 8 nodes prescribed become identity rows (p = 0 there).
 TEST(Poisson, ObstacleIdentityRows) {
-  for (auto op : {ProjectionCfg::Op::Exact, ProjectionCfg::Op::Approximate})
+  for (auto op : {PoissonSettings::Op::Exact, PoissonSettings::Op::Approximate})
   for (const char* pc : {"sgs", "multigrid"}) {
     Case c({16, 16, 16});
     auto coef = makeCoef(c, {-1, false, 5, 10});
@@ -208,7 +208,7 @@ TEST(Poisson, ObstacleIdentityRows) {
         inside);
     MPI_Allreduce(MPI_IN_PLACE, &inside, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
     EXPECT_EQ(inside, 0.0) << opName(op) << " " << pc;
-    if (op == ProjectionCfg::Op::Exact) {
+    if (op == PoissonSettings::Op::Exact) {
       EXPECT_EQ(s->nullModeCount(), 3 * 16 - 1); // modes zeroed on identity rows stay null
       EXPECT_LE(maxAbs(c, p.div, p.res, 0.1), 1e-12 * p.divStar) << "identity " << pc;
     }
@@ -222,7 +222,7 @@ TEST(Poisson, Preconditioners) {
   auto coef = makeCoef(c, {-1, true});
   auto coef2 = makeCoef(c, {});
   auto ustar = makeVelocity(c, coef);
-  for (auto op : {ProjectionCfg::Op::Exact, ProjectionCfg::Op::Approximate})
+  for (auto op : {PoissonSettings::Op::Exact, PoissonSettings::Op::Approximate})
     for (const char* pc : {"sgs", "jacobi", "none", "multigrid"}) {
       auto s = makePoissonSolver(c.g, cfgOf(op, 1e-8, pc));
       s->setCoefficients(coef2); // the second call exercises the refill / reuse path
@@ -236,7 +236,7 @@ TEST(Poisson, Preconditioners) {
         std::printf("[16^3 %-6s %-9s] its %4d relres %.2e %.3f s (warm start: %d its)\n", opName(op), pc,
                     p.st.iterations, p.st.relResidual, p.st.seconds, warm.iterations);
     }
-  EXPECT_THROW(makePoissonSolver(c.g, cfgOf(ProjectionCfg::Op::Exact, 1e-8, "ilu")), std::invalid_argument);
+  EXPECT_THROW(makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-8, "ilu")), std::invalid_argument);
 }
 
 // (g) Exact operator at density ratio 1000 (the dam break's water block, rho 1000 in the
@@ -258,7 +258,7 @@ TEST(Poisson, ExactMultigridDensityRatio1000) {
   Kokkos::fence();
   auto ustar = makeVelocity(c, coef);
   for (const char* pc : {"multigrid", "sgs"}) {
-    auto s = makePoissonSolver(c.g, cfgOf(ProjectionCfg::Op::Exact, 1e-8, pc));
+    auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-8, pc));
     auto p = project(c, *s, coef, ustar, 0.1);
     const double rnorm = p.st.relResidual * std::sqrt(dot(c, p.rhs, p.rhs));
     const double du = maxAbs(c, p.div); // collective: outside any rank-0 branch
@@ -281,7 +281,7 @@ TEST(Poisson, Cost32) {
   Case c({32, 32, 32});
   auto coef = makeCoef(c, {});
   auto ustar = makeVelocity(c, coef);
-  for (auto op : {ProjectionCfg::Op::Exact, ProjectionCfg::Op::Approximate}) {
+  for (auto op : {PoissonSettings::Op::Exact, PoissonSettings::Op::Approximate}) {
     auto s = makePoissonSolver(c.g, cfgOf(op, 1e-8));
     auto p = project(c, *s, coef, ustar, 0.1);
     EXPECT_TRUE(p.st.converged) << opName(op);

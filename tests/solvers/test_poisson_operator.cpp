@@ -1,4 +1,5 @@
 // Poisson operator: symmetry and null space (src/solvers/poisson.hpp).
+#include "effects/navier_stokes/navier_stokes.hpp" // poissonSettings()
 #include "poisson_fixture.hpp"
 
 using namespace voigt;
@@ -7,7 +8,7 @@ using namespace voigt::ptest;
 // (a) <Ax, y> == <x, Ay>, with variable coefficients, a periodic axis, an outflow face and an obstacle.
 // The second grid has 2 cells on a periodic axis, where offsets -1 and +1 alias (merged entries).
 TEST(Poisson, Symmetric) {
-  for (auto op : {ProjectionCfg::Op::Exact, ProjectionCfg::Op::Approximate})
+  for (auto op : {PoissonSettings::Op::Exact, PoissonSettings::Op::Approximate})
   for (int grid = 0; grid < 2; ++grid) {
     Case c(grid ? std::array<int, 3>{6, 2, 5} : std::array<int, 3>{8, 6, 7},
            grid ? std::array<bool, 3>{true, true, false} : std::array<bool, 3>{false, true, false}, {1, 0.8, 1.3});
@@ -26,8 +27,8 @@ TEST(Poisson, Symmetric) {
 
 // (b) Null modes, decided numerically (src/solvers/null_space.hpp).
 TEST(Poisson, NullModes) {
-  const auto E = ProjectionCfg::Op::Exact, P = ProjectionCfg::Op::Approximate;
-  struct Row { std::array<int, 3> n; bool periodic; int outflow; ProjectionCfg::Op op; int expected; };
+  const auto E = PoissonSettings::Op::Exact, P = PoissonSettings::Op::Approximate;
+  struct Row { std::array<int, 3> n; bool periodic; int outflow; PoissonSettings::Op op; int expected; };
   // Walls or fully periodic (even n): the constant and the modulated modes
   // (-1)^(i_a+i_b)[i_c == q], n_x + n_y + n_z - 1 independent ones (the three
   // families share (-1)^(i+j+k)). Outflow face x+: the n_x modes (-1)^(j+k)[i == q]
@@ -57,11 +58,50 @@ TEST(Poisson, NullSpaceDimension) {
                       {{8, 8, 8}, false, {-1, false, 3, 5}, 23}};
   for (const Row& r : rows) {
     Case c(r.n, {r.periodic, r.periodic, r.periodic});
-    auto s = makePoissonSolver(c.g, cfgOf(ProjectionCfg::Op::Exact, 1e-8));
+    auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-8));
     s->setCoefficients(makeCoef(c, r.spec));
     const int N = (int)c.g.cellsGlobal();
     const int measured = nullity(denseOperator(c, *s), N);
     EXPECT_EQ(measured, r.expected) << "n0=" << r.n[0] << " outflow=" << r.spec.outflowFace;
     EXPECT_EQ(s->nullModeCount(), measured) << "n0=" << r.n[0] << " outflow=" << r.spec.outflowFace;
   }
+}
+
+// The scene's projection section reaches the solver unchanged: PoissonSettings has the
+// defaults of ProjectionCfg, and poissonSettings() copies every knob the solver reads.
+TEST(PoissonSettings, FromProjectionCfg) {
+  const PoissonSettings d, fromDefault = poissonSettings(ProjectionCfg{});
+  EXPECT_EQ(fromDefault.op, d.op);
+  EXPECT_EQ(fromDefault.tolerance, d.tolerance);
+  EXPECT_EQ(fromDefault.maxIterations, d.maxIterations);
+  EXPECT_EQ(fromDefault.preconditioner, d.preconditioner);
+  EXPECT_EQ(fromDefault.damping, d.damping);
+  EXPECT_EQ(fromDefault.sweeps, d.sweeps);
+  EXPECT_EQ(fromDefault.multigridReuse, d.multigridReuse);
+  EXPECT_EQ(fromDefault.multigridRefresh, d.multigridRefresh);
+  EXPECT_EQ(fromDefault.multigridSmoother, d.multigridSmoother);
+  EXPECT_EQ(fromDefault.chebyshevDegree, d.chebyshevDegree);
+
+  ProjectionCfg P;
+  P.op = ProjectionCfg::Op::Approximate;
+  P.tolerance = 3e-7;
+  P.maxIterations = 17;
+  P.preconditioner = "multigrid";
+  P.damping = 0.7;
+  P.sweeps = 3;
+  P.multigridReuse = "RAP";
+  P.multigridRefresh = 5;
+  P.multigridSmoother = "chebyshev";
+  P.chebyshevDegree = 4;
+  const PoissonSettings s = poissonSettings(P);
+  EXPECT_EQ(s.op, PoissonSettings::Op::Approximate);
+  EXPECT_EQ(s.tolerance, 3e-7);
+  EXPECT_EQ(s.maxIterations, 17);
+  EXPECT_EQ(s.preconditioner, "multigrid");
+  EXPECT_EQ(s.damping, 0.7);
+  EXPECT_EQ(s.sweeps, 3);
+  EXPECT_EQ(s.multigridReuse, "RAP");
+  EXPECT_EQ(s.multigridRefresh, 5);
+  EXPECT_EQ(s.multigridSmoother, "chebyshev");
+  EXPECT_EQ(s.chebyshevDegree, 4);
 }

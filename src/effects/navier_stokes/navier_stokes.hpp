@@ -57,5 +57,7 @@ class NavierStokes : public Effect {
 
 SymTensorField stressField(const FieldStore& f);
 std::string solverSummary(const ProjectionCfg& P);
+// The scene's projection section as the solver layer's settings (src/solvers/solver_settings.hpp).
+PoissonSettings poissonSettings(const ProjectionCfg& P);
 
 } // namespace voigt

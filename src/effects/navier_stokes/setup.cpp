@@ -75,7 +75,7 @@ void NavierStokes::setup(State& st) {
   Kokkos::deep_copy(F.scalar("density"), scene_->fluidMaterial().density);
   Kokkos::deep_copy(F.scalar("viscosity"), scene_->fluidMaterial().viscosity);
   initialVelocity(st);
-  solver_ = makePoissonSolver(g, scene_->projection);
+  solver_ = makePoissonSolver(g, poissonSettings(scene_->projection));
   st.propertiesChanged = true;
 }
 
@@ -138,6 +138,21 @@ void NavierStokes::registerTasks(Pipeline& p) {
                                                            : "approximate 7-point Laplacian") +
         ", CG + " + solverSummary(scene_->projection),
         [this](State& st) { project(st); });
+}
+
+PoissonSettings poissonSettings(const ProjectionCfg& P) {
+  PoissonSettings s;
+  s.op = P.op == ProjectionCfg::Op::Exact ? PoissonSettings::Op::Exact : PoissonSettings::Op::Approximate;
+  s.tolerance = P.tolerance;
+  s.maxIterations = P.maxIterations;
+  s.preconditioner = P.preconditioner;
+  s.damping = P.damping;
+  s.sweeps = P.sweeps;
+  s.multigridReuse = P.multigridReuse;
+  s.multigridRefresh = P.multigridRefresh;
+  s.multigridSmoother = P.multigridSmoother;
+  s.chebyshevDegree = P.chebyshevDegree;
+  return s;
 }
 
 // The solver settings as `voigt check` prints them: every knob that changes the cost.
