@@ -27,17 +27,27 @@ const char* toString(Stage s) {
 void Pipeline::add(Stage s, const std::string& effect, const std::string& name, Fn fn,
                    std::vector<std::string> after) {
   auto& ts = tasks_[s];
-  auto pos = ts.end();
-  for (auto it = ts.begin(); it != ts.end(); ++it)
-    if (std::find(it->after.begin(), it->after.end(), effect) != it->after.end()) {
-      pos = it;
-      break;
+  ts.push_back(Task{effect, name, std::move(fn), std::move(after)});
+  // Registration order, except that a task moves to just behind the last task of
+  // an effect it declared `after` (the others keep their relative order).
+  auto follows = [](const Task& t, const std::string& e) {
+    return std::find(t.after.begin(), t.after.end(), e) != t.after.end();
+  };
+  for (size_t pass = 0, moved = 1; moved; ++pass) {
+    if (pass > ts.size()) throw std::logic_error("pipeline: the tasks of a stage declare a cycle with `after`");
+    moved = 0;
+    for (size_t i = 0; i < ts.size() && !moved; ++i) {
+      size_t last = i;
+      for (size_t j = i + 1; j < ts.size(); ++j)
+        if (follows(ts[i], ts[j].effect)) last = j;
+      if (last != i) {
+        Task t = std::move(ts[i]);
+        ts.erase(ts.begin() + long(i));
+        ts.insert(ts.begin() + long(last), std::move(t)); // lands behind the old ts[last]
+        moved = 1;
+      }
     }
-  // A task placed early must not land before an effect it follows itself.
-  for (auto it = pos; it != ts.end(); ++it)
-    if (std::find(after.begin(), after.end(), it->effect) != after.end())
-      throw std::logic_error("pipeline: " + effect + " and " + it->effect + " each declare the other first");
-  ts.insert(pos, Task{effect, name, std::move(fn), std::move(after)});
+  }
 }
 
 const std::vector<Pipeline::Task>& Pipeline::tasks(Stage s) const {

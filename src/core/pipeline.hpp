@@ -25,9 +25,9 @@ class Pipeline {
     Fn fn;
     std::vector<std::string> after; // effects whose tasks in this stage must run first
   };
-  // Appends the task to its stage, except that it goes before the first task
-  // that declared `after` its effect; `after` names effects (absent ones are
-  // ignored) that must run before this task, whichever registers first.
+  // Appends the task to its stage; `after` names effects (absent ones are
+  // ignored) whose tasks in this stage must run before this one, whichever
+  // registers first: such a task moves behind them, the others keep their order.
   void add(Stage s, const std::string& effect, const std::string& name, Fn fn, std::vector<std::string> after = {});
   // Runs the tasks of one stage in order, timing each.
   void run(Stage s, State& st);

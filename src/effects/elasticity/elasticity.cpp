@@ -133,8 +133,11 @@ void Elasticity::registerTasks(Pipeline& p) {
   p.add(Stage::Advection, name(), "tau_S: band list, SSP-RK2 + MUSCL/KT transport (erratum 3)",
         [this](State& st) { advect(st); });
   p.add(Stage::Stress, name(), "tau += H(psi) tau_S, Eq. (9)/(14)", [this](State& st) { addStress(st); });
+  // After the interface is final for the step (re-initialised, volume-corrected):
+  // the extension to psi <= 0 (fluid_side extend/blend) then uses the psi that the
+  // next step's blend will see.
   p.add(Stage::Corrections, name(), "Jaumann rate, Benson half-step with u^{n+1}, Eq. (13)/(16)",
-        [this](State& st) { update(st); });
+        [this](State& st) { update(st); }, {"reinit", "level_set"});
   p.add(Stage::Diagnostics, name(), "S2, elastic energy, stress cells", [this](State& st) { diagnose(st); });
 }
 
