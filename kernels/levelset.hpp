@@ -97,15 +97,15 @@ inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double 
 }
 
 // Global volume correction (level_set.volume_correction, effects/level_set/volume.cpp).
-// Local sums over owned cells of H(psi + s) dv and dH/dpsi(psi + s) dv: the
-// phase-1 volume after a uniform shift s and its derivative (Newton's step).
-inline void localShiftedVolume(const Grid& g, const Field& psi, double kappa, double s, double& vol, double& dvol) {
+// Local sums over owned cells of H(psi) dv and dH/dpsi(psi) dv: the phase-1
+// volume and its derivative with respect to a uniform shift of psi (Newton's step).
+inline void localVolumeAndDerivative(const Grid& g, const Field& psi, double kappa, double& vol, double& dvol) {
   const double dv = g.cellVolume();
   double v = 0, d = 0;
   Kokkos::parallel_reduce(
-      "shifted_volume", cellRange(g).policy(),
+      "volume_and_derivative", cellRange(g).policy(),
       KOKKOS_LAMBDA(int i, int j, int k, double& va, double& da) {
-        const double p = psi(i, j, k) + s;
+        const double p = psi(i, j, k);
         va += smoothedHeaviside(p, kappa);
         da += smoothedDelta(p, kappa);
       },

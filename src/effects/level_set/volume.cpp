@@ -29,7 +29,7 @@ void LevelSet::correctVolume(State& st) {
   Field psi = st.fields.scalar("psi");
   const double kappa = geo_.kappa(g), hmin = LevelSetGeometry::hMin(g);
   double loc[3] = {0, 0, 0}, glob[3];
-  localShiftedVolume(g, psi, kappa, 0.0, loc[0], loc[1]);
+  localVolumeAndDerivative(g, psi, kappa, loc[0], loc[1]);
   if (std::any_of(open_, open_ + 6, [](bool b) { return b; }) && st.fields.allocated("velocity"))
     loc[2] = localOpenBoundaryFlux(g, psi, st.fields.vector("velocity"), kappa, open_);
   MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
