@@ -13,10 +13,12 @@ Standard library only."""
 import csv
 import datetime
 import fcntl
-import json
 import os
 import re
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))  # voigt_post
+from voigt_post import series  # noqa: E402
 
 COLUMNS = ["run_id", "modulus", "model", "grid", "ranks", "t_reached", "steps", "wall_s", "state", "updated_utc"]
 EXIT_STATE = {0: "finished", 75: "wall_limit", 130: "stopped", 143: "stopped"}
@@ -67,11 +69,7 @@ def seconds(text):
 
 
 def summary(path):
-    try:
-        with open(os.path.join(path, "summary.json")) as f:
-            return json.load(f)
-    except (OSError, ValueError):
-        return None
+    return series.summary(path, None)
 
 
 def state(path):

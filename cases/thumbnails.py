@@ -15,26 +15,28 @@ import subprocess
 import sys
 import time
 
-import h5py
 import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))  # voigt_post
+from voigt_post import fields, launch, series  # noqa: E402
+from voigt_post.formulas import taylor_green_rms  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = launch.REPO
 
 plt.rcParams.update({"font.size": 7, "axes.titlesize": 7, "legend.fontsize": 6})
 
 
-def run(args, scene, name, *extra):
-    """Runs cases/SCENE into OUT/NAME and returns the output directory."""
+def run(args, scene, name, *sets):
+    """Runs cases/SCENE (--set SETS) into OUT/NAME and returns the output directory."""
     out = os.path.join(args.out, name)
     t0 = time.time()
-    subprocess.run([args.voigt, "run", os.path.join(HERE, scene), "-o", out, "--overwrite", *extra],
+    subprocess.run(launch.voigt_cmd(args.voigt, os.path.join(HERE, scene), out, sets),
                    check=True, stdout=subprocess.DEVNULL)
     print("%-14s %5.1f s  %s" % (name, time.time() - t0, out))
     return out
@@ -42,7 +44,7 @@ def run(args, scene, name, *extra):
 
 def velocity(frame):
     """Node velocity (z, y, x, 3; periodic duplicate nodes included) and the nodes' y."""
-    u = h5py.File(frame.path, "r")["velocity"][...]
+    u = fields.read(frame.path, "velocity")
     y = frame.origin[1] + frame.spacing[1] * np.arange(u.shape[1])
     return u, y
 
@@ -68,7 +70,7 @@ def poiseuille_exact(y, t, g=0.8, nu=0.1, terms=401):
 
 def channel(args):
     cou = frames(run(args, "channel/couette.yaml", "couette"))
-    poi = frames(run(args, "channel/poiseuille.yaml", "poiseuille", "--set", "output.interval=0.5"))
+    poi = frames(run(args, "channel/poiseuille.yaml", "poiseuille", "output.interval=0.5"))
     fig, (a, b) = plt.subplots(1, 2, figsize=(4, 3), sharey=True)
     yy = np.linspace(0, 1, 201)
     for f, c in zip([cou[1], cou[2], cou[-1]], ["C0", "C1", "C2"]):
@@ -97,8 +99,8 @@ def channel(args):
 
 def shear_wave(args):
     out = run(args, "shear_wave/shear_wave_tg.yaml", "shear_wave_tg")
-    d = np.genfromtxt(os.path.join(out, "timeseries.csv"), delimiter=",", names=True, dtype=None, encoding=None)
-    t, ke = d["t"], d["kinetic_energy"]
+    d = series.timeseries(out)
+    t, ke = np.array(d["t"]), np.array(d["kinetic_energy"])
     ke0 = 0.5 * 1e-6 / 2 * 0.0625  # rho U^2 <sin^2 cos^2 + cos^2 sin^2> / 2 x volume, U = 1e-3
     omega = 2 * np.sqrt(2) * np.pi
     mins = []  # kinetic-energy minima, parabolic interpolation (as in the README)
@@ -127,16 +129,13 @@ def shear_wave(args):
 
 def taylor_green(args):
     f = frames(run(args, "taylor_green/taylor_green.yaml", "taylor_green"))[-1]
-    u = h5py.File(f.path, "r")["velocity"][...]
+    u = fields.read(f.path, "velocity")
     nz, ny, nx, _ = u.shape
     x = f.origin[0] + f.spacing[0] * np.arange(nx)
     y = f.origin[1] + f.spacing[1] * np.arange(ny)
     X, Y = np.meshgrid(x, y)
     amp = np.exp(-2 * 0.05 * f.t)
-    ex = np.stack([amp * np.sin(X) * np.cos(Y), -amp * np.cos(X) * np.sin(Y)], -1)
-    e = u[:-1, :-1, :-1, :].copy()
-    e[..., :2] -= ex[None, :-1, :-1, :]
-    rms = np.sqrt(np.mean(np.sum(e ** 2, -1)))  # as tests/flow/test_taylor_green.cpp
+    rms, _ = taylor_green_rms(u[:-1, :-1, :-1, :], x[:-1], y[:-1], f.t)  # as tests/flow/test_taylor_green.cpp
     mid = u[nz // 2]
     fig, a = plt.subplots(figsize=(4, 3))
     im = a.imshow(np.hypot(mid[..., 0], mid[..., 1]), origin="lower", extent=[x[0], x[-1], y[0], y[-1]],

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Block diagnostics from a falling_block run's HDF5 output (Python 3 standard library + h5dump;
-python3-yaml for the run's scene record, unless --cylinder is given).
+"""Block diagnostics from a falling_block run's HDF5 output (Python 3 + numpy, h5py or h5dump:
+python/voigt_post/fields.py; python3-yaml for the run's scene record, unless --cylinder is given).
 
 An independent check of the solver's `solid_body` effect (timeseries.csv, every step): at every
 output time the same measures from the written fields, with the same definitions
@@ -15,25 +15,20 @@ probe_centre.csv (every 0.005 s), the velocity at the block's centre.
 --sharp: the earlier stand-in (cells with psi > 0 counted whole, gaps from cell centres minus
 h/2; positions good to about h/2).
 """
-import json
 import math
 import os
-import struct
-import subprocess
 import sys
-import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
+from voigt_post import fields, series  # noqa: E402
+from voigt_post.formulas import heaviside  # noqa: E402
 from voigt_post.scene_record import cylinder  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
 
-def read_h5(path, name, count):
-    with tempfile.NamedTemporaryFile(suffix=".bin") as f:
-        subprocess.run(["h5dump", "-d", name, "-b", "LE", "-o", f.name, path],
-                       check=True, stdout=subprocess.DEVNULL)
-        data = open(f.name, "rb").read()
-    return struct.unpack("<%dd" % count, data)
+def read_flat(path, name):
+    """A field as a flat list of floats in the file's (z, y, x[, component]) order."""
+    return fields.read(path, name).ravel().tolist()
 
 
 def jacobi_eig(a):
@@ -62,20 +57,9 @@ def jacobi_eig(a):
     return [a[i][i] for i in range(3)], v
 
 
-def heaviside(p, kappa):
-    """Smoothed Heaviside of Eq. (4), as kernels/heaviside.hpp."""
-    if p < -kappa:
-        return 0.0
-    if p > kappa:
-        return 1.0
-    return 0.5 * (1 + p / kappa + math.sin(math.pi * p / kappa) / math.pi)
-
-
 def smoothing_cells(outdir):
-    try:
-        return json.load(open(os.path.join(outdir, "summary.json")))["level_set"]["smoothing_cells"]
-    except (OSError, KeyError, ValueError):
-        return 2.0
+    """kappa in cells (summary.json), 2 for a run without one."""
+    return series.summary(outdir, {}).get("level_set", {}).get("smoothing_cells", 2.0)
 
 
 def plane_deviation(mid):
@@ -115,11 +99,10 @@ def analyse(outdir, cyl, sharp):
     print("t,volume,cx,cy,cz,vx,vy,vz,tilt_deg,angle_z_deg,bending,gap_cylinder,gap_base,"
           "contact_cylinder,contact_base")
     for t, path, (nx, ny, nz), (ox, oy, oz), (hx, hy, hz) in frames(outdir):
-        n = nx * ny * nz
         h = min(hx, hy, hz)
         kappa = kcells * h
-        psi = read_h5(path, "/psi", n)
-        vel = read_h5(path, "/velocity", (nx + 1) * (ny + 1) * (nz + 1) * 3)
+        psi = read_flat(path, "psi")
+        vel = read_flat(path, "velocity")
         pts, vs, ws = [], [], []
         gcyl, gbase = float("inf"), float("inf")
         for k in range(nz):
@@ -195,15 +178,7 @@ def analyse(outdir, cyl, sharp):
 def probes(outdir):
     """Every probe sample: underside and top (psi = 0 crossings) on the three vertical lines,
     and the velocity at the deepest point (largest psi) of the centre line."""
-    cols = {}
-    for name in ("left", "centre", "right"):
-        rows = {}
-        with open(os.path.join(outdir, "probe_%s.csv" % name)) as f:
-            head = f.readline().strip().split(",")
-            for line in f:
-                r = dict(zip(head, (float(v) for v in line.split(","))))
-                rows.setdefault(r["t"], []).append(r)
-        cols[name] = rows
+    cols = {name: series.probe(outdir, name) for name in ("left", "centre", "right")}
     print("t,bottom_left,top_left,bottom_centre,top_centre,bottom_right,top_right,vx_centre,vy_centre")
     for t in sorted(cols["centre"]):
         out = [t]

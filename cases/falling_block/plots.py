@@ -13,8 +13,6 @@ change), and the impact and what follows by one rule for every run (events()). E
 energy the block has released since t = 0; without an energy source it stays <= 1.
 """
 import argparse
-import csv
-import json
 import os
 import sys
 
@@ -22,7 +20,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
+from voigt_post import series  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
 PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
@@ -32,17 +31,9 @@ STATE_KEYS = ("solid_potential_energy", "kinetic_energy", "elastic_energy", "sol
 
 
 def load(d):
-    cols = {}
-    with open(os.path.join(d, "timeseries.csv")) as f:
-        for r in csv.DictReader(f):
-            for k, v in r.items():
-                try:
-                    cols.setdefault(k, []).append(float(v))
-                except (TypeError, ValueError):
-                    pass
-    try:
-        summ = json.load(open(os.path.join(d, "summary.json")))
-    except (FileNotFoundError, ValueError):  # a run still going: summary.json comes at the end
+    cols = series.timeseries(d)
+    summ = series.summary(d, None)
+    if summ is None:  # a run still going: summary.json comes at the end
         print("plots.py: %s has no complete summary.json yet (still running?): no contact markers" % d)
         summ = {}
     return cols, summ

@@ -12,7 +12,7 @@ none and gets `--cylinder X Y R` (default: the 4.5 cm cylinder of those runs).
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
 from voigt_post import picture  # noqa: E402
 from voigt_post.scene_record import LEGACY_CYLINDER  # noqa: E402
 

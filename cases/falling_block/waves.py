@@ -21,8 +21,6 @@ impact at 75^3 and sinks ~3 mm after; at 30^3 it is 3-5 mm higher).
 Prints a markdown table (speeds, their ratio to c_s, the fit's R^2).
 """
 import argparse
-import csv
-import json
 import os
 import sys
 
@@ -32,21 +30,20 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from plots import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
+from voigt_post import series  # noqa: E402
 from voigt_post.scene_record import cylinder  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
 
 def probe(d):
     """t (nt), x (nx), the line's height y, psi and S2 (nt, nx) from DIR/probe_impact.csv."""
-    rows = {}
-    with open(os.path.join(d, "probe_impact.csv")) as f:
-        for r in csv.DictReader(f):
-            rows.setdefault(float(r["t"]), []).append((float(r["x"]), float(r["psi"]), float(r["S2"])))
-            y = float(r["y"])
-    ts = sorted(rows)
+    samples = series.probe(d, "impact")
+    ts = sorted(samples)
     if not ts:
         return None
+    rows = {t: [(r["x"], r["psi"], r["S2"]) for r in samples[t]] for t in ts}
+    y = samples[ts[-1]][-1]["y"]
     x = np.array([p[0] for p in rows[ts[0]]])
     psi = np.array([[p[1] for p in rows[t]] for t in ts])
     s2 = np.array([[p[2] for p in rows[t]] for t in ts])
@@ -54,12 +51,8 @@ def probe(d):
 
 
 def impact_time(d):
-    t, vy = [], []
-    with open(os.path.join(d, "timeseries.csv")) as f:
-        for r in csv.DictReader(f):
-            t.append(float(r["t"]))
-            vy.append(float(r["solid_vy"]))
-    hit = slowing(t, vy)
+    cols = series.timeseries(d)
+    hit = slowing(cols["t"], cols["solid_vy"])
     return hit[0] if hit else None
 
 
@@ -101,7 +94,7 @@ def front(t, x, y, psi, s2, t0, t1, level, h, src):
 def wave_speed(d, given):
     """c_s from DIR/summary.json; a run still going has none yet, so --wave-speed stands in."""
     try:
-        return json.load(open(os.path.join(d, "summary.json")))["elasticity"]["wave_speed"]
+        return series.summary(d)["elasticity"]["wave_speed"]
     except FileNotFoundError:
         if given is None:
             raise SystemExit("waves.py: %s has no summary.json (still running?): pass --wave-speed "

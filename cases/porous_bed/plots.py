@@ -15,18 +15,17 @@ around x = z = 5.5 cm; cell centres), so runs can be compared at an earlier comm
 then stop at that output too.
 """
 import argparse
-import csv
 import json
 import os
 import sys
 
-import h5py
 import matplotlib
 import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
+from voigt_post import fields, series  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -42,30 +41,22 @@ def ergun(e):
 def midline(d, at=None):
     if at is not None:
         t, path, _, _, sp = frames(d, at)[-1]
-        with h5py.File(path, "r") as f:
-            p = f["pressure"][...]                 # (z, y, x), cell centres
+        p = fields.read(path, "pressure")          # (z, y, x), cell centres
         nz, ny, nx = p.shape
         col = p[nz // 2 - 1:nz // 2 + 1, :, nx // 2 - 1:nx // 2 + 1].mean(axis=(0, 2))
         return t, (np.arange(ny) + 0.5) * sp[1], col
-    rows = {}
-    with open(os.path.join(d, "probe_midline.csv")) as f:
-        for r in csv.DictReader(f):
-            rows.setdefault(float(r["t"]), []).append((float(r["y"]), float(r["pressure"])))
+    rows = series.probe(d, "midline")
     t = max(rows)
-    y, p = np.array(sorted(rows[t])).T
+    y, p = np.array(sorted((r["y"], r["pressure"]) for r in rows[t])).T
     return t, y, p
 
 
-def slice_mid(path, name):
-    with h5py.File(path, "r") as f:
-        a = f[name][...]
-    return a[a.shape[0] // 2]          # (y, x) at the middle z
+slice_mid = fields.mid_z             # (y, x) at the middle z
 
 
 def timeseries(d):
-    with open(os.path.join(d, "timeseries.csv")) as f:
-        rows = list(csv.DictReader(f))
-    return np.array([float(r["t"]) for r in rows]), np.array([float(r["solid_cy"]) for r in rows])
+    cols = series.timeseries(d)
+    return np.array(cols["t"]), np.array(cols["solid_cy"])
 
 
 def main():

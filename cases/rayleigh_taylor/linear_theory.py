@@ -28,8 +28,14 @@ Usage: linear_theory.py [--re 256] [--atwood 0.5]   (a few minutes: dense eigenp
 Prints growth rates in units sqrt(g/H) for kappa = 2 h at several h.
 """
 import argparse
+import os
+import sys
+
 import numpy as np
 import scipy.linalg as sla
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
+from voigt_post.formulas import heaviside  # noqa: E402  (Eq. 4)
 
 
 def sharp_equal_nu(A, g, k, nu):
@@ -66,11 +72,6 @@ def sharp_equal_nu(A, g, k, nu):
         if np.sign(d[i]) != np.sign(d[i + 1]):
             return brentq(det, ns[i + 1], ns[i], xtol=1e-14)
     raise RuntimeError("no root")
-
-
-def heaviside(z, kappa):
-    H = 0.5 * (1 + z / kappa + np.sin(np.pi * z / kappa) / np.pi)
-    return np.where(z < -kappa, 0.0, np.where(z > kappa, 1.0, H))
 
 
 def diffuse(A, g, k, nu, kappa, Lz=1.0, N=1600):

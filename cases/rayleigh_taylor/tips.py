@@ -25,10 +25,10 @@ import argparse
 import os
 import sys
 
-import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
+from voigt_post import fields  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
 HE1999 = [  # t_T, bubble, spike
@@ -64,8 +64,7 @@ def analyse(outdir):
     h = fr[0].spacing[1]  # vertical cell size: the crossings are along y
     rows = []
     for t, path, *_ in fr:
-        with h5py.File(path, "r") as f:
-            psi = np.array(f["psi"])[0]  # [z, y, x] -> [y, x]
+        psi = fields.read(path, "psi")[0]  # [z, y, x] -> [y, x]
         b, s = tips(psi, h)
         rows.append((t, t / np.sqrt(2), b - 2, s - 2))
     rows = np.array(rows)
@@ -120,8 +119,7 @@ def main():
         fig, axs = plt.subplots(1, 4, figsize=(8, 4.8), sharey=True)
         for ax, tT in zip(axs, (1.0, 1.5, 2.0, 2.5)):
             t, path = min(fr, key=lambda f: abs(f.t / np.sqrt(2) - tT))[:2]
-            with h5py.File(path, "r") as f:
-                rho = np.array(f["density"])[0]
+            rho = fields.read(path, "density")[0]
             full = np.hstack([rho[:, ::-1], rho, rho[:, ::-1]])  # mirror: one and a half wavelengths
             ax.imshow(full, origin="lower", extent=[-0.5, 1.0, 0, 4], cmap="coolwarm", vmin=1, vmax=3)
             ax.set_title(f"$t_T$ = {t / np.sqrt(2):.2f}", fontsize=9)

@@ -1,0 +1,92 @@
+"""What a run wrote beside its fields (Python standard library only; numpy for probe_array):
+
+- summary(outdir): summary.json (written at the end of a run: a run still going has none);
+- timeseries(outdir): timeseries.csv, one column per quantity, one value per step;
+- probe(outdir, name): probe_<name>.csv, the samples grouped by time; probe_array: all rows;
+- read_csv, write_csv: the CSV tables the studies write (rows as dicts of strings).
+
+    from voigt_post import series
+    cols = series.timeseries("output/run")   # cols["t"], cols["solid_vy"], ... (floats)
+"""
+import csv
+import json
+import os
+
+_RAISE = object()
+
+
+def summary(outdir, default=_RAISE):
+    """OUTDIR/summary.json as a dict. Without `default` a missing or unreadable (half-written)
+    file raises OSError or ValueError; with it, `default` is returned instead."""
+    try:
+        with open(os.path.join(outdir, "summary.json")) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        if default is _RAISE:
+            raise
+        return default
+
+
+def _rows(path):
+    """Header and the rows with as many values as the header (a run still writing may have left
+    its last line short)."""
+    with open(path, newline="") as f:
+        r = csv.reader(f)
+        head = next(r, [])
+        return head, [row for row in r if len(row) == len(head)]
+
+
+def timeseries(outdir):
+    """OUTDIR/timeseries.csv as {column: [float per step]}. Values that are not numbers (the text
+    column dt_reason, empty cells) are left out of their column."""
+    head, rows = _rows(os.path.join(outdir, "timeseries.csv"))
+    cols = {}
+    for row in rows:
+        for k, v in zip(head, row):
+            try:
+                cols.setdefault(k, []).append(float(v))
+            except ValueError:
+                pass
+    return cols
+
+
+def probe_path(outdir, name):
+    return os.path.join(outdir, "probe_%s.csv" % name)
+
+
+def probe(outdir, name):
+    """OUTDIR/probe_NAME.csv as {t: [row, ...]} in the order written, each row a dict of floats
+    (t, s, x, y, z and the probed fields: psi, velocity_x, ...)."""
+    head, rows = _rows(probe_path(outdir, name))
+    out = {}
+    for row in rows:
+        r = dict(zip(head, (float(v) for v in row)))
+        out.setdefault(r["t"], []).append(r)
+    return out
+
+
+def probe_array(path):
+    """Every row of a probe file (a path, or (outdir, name)) as a numpy structured array."""
+    import numpy as np
+    if isinstance(path, tuple):
+        path = probe_path(*path)
+    return np.genfromtxt(path, delimiter=",", names=True)
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def write_csv(path, rows):
+    """Rows (dicts) to PATH; the columns are every key in the order first seen."""
+    keys = []
+    for r in rows:
+        for k in r:
+            if k not in keys:
+                keys.append(k)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
