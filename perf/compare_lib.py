@@ -1,37 +1,26 @@
 """Helpers of perf/compare: git export, builds, voigt runs, statistics and the report.
-Standard library only. perf/compare is the command; perf/README.md describes it."""
+Standard library only. perf/compare (compare.py) is the command; perf/README.md describes it.
+Launching voigt and the report's number formats come from python/voigt_post (launch, report)."""
 import glob
 import hashlib
 import json
 import os
 import shutil
-import signal
-import statistics
 import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))  # voigt_post
+from voigt_post import launch  # noqa: E402
+from voigt_post.launch import git, log, run_logged, tail, voigt_cmd  # noqa: E402,F401  (used by compare.py)
+from voigt_post.report import failed_runs, fmt, med, spread  # noqa: E402
+
+ROOT = launch.REPO
 NICE = ["nice", "-n", "10"]
-# Ranks yield the core while they wait (as perf/scaling/run): on a shared 2-core machine a
-# spinning rank steals the core its partner needs.
-MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1", "-np"]
 # Stages that run inside momentum (once per Runge-Kutta substage): not added to the total.
 NESTED = ("stress", "forces")
 STAGE_ORDER = ["properties", "advection", "momentum", "stress", "forces", "projection", "corrections",
                "diagnostics"]
-
-
-def log(*a):
-    print(time.strftime("%H:%M:%S"), *a, file=sys.stderr, flush=True)
-
-
-def git(*args, check=True):
-    r = subprocess.run(["git", "-C", ROOT] + list(args), capture_output=True, text=True)
-    if check and r.returncode != 0:
-        raise SystemExit("git %s: %s" % (" ".join(args), r.stderr.strip()))
-    return r.stdout.strip()
 
 
 def identities(rev):
@@ -133,55 +122,6 @@ def prepare_b(bdir, jobs, no_build):
 
 
 # ---------------------------------------------------------------- running
-def voigt_cmd(binary, ranks, scene, out, steps, sets, restart_from=None, end_time=None):
-    cmd = [binary, "run", scene, "-o", out, "--overwrite"]
-    if steps is not None:
-        cmd += ["--steps", str(steps)]
-    if end_time is not None:
-        cmd += ["--end-time", repr(end_time)]
-    if restart_from:
-        cmd += ["--restart-from", restart_from]
-    for s in sets:
-        cmd += ["--set", s]
-    return (MPIRUN + [str(ranks)] + cmd) if ranks > 1 else cmd
-
-
-def _stop(p):
-    """SIGTERM to the process group of p (mpirun and its ranks), SIGKILL after 15 s."""
-    try:
-        os.killpg(p.pid, signal.SIGTERM)
-        p.wait(timeout=15)
-    except subprocess.TimeoutExpired:
-        os.killpg(p.pid, signal.SIGKILL)
-        p.wait()
-    except ProcessLookupError:
-        pass
-
-
-def run_logged(cmd, logf, timeout):
-    """Runs cmd in its own process group; returns (exit code, seconds); on timeout kills that group."""
-    t0 = time.time()
-    with open(logf, "w") as f:
-        p = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, start_new_session=True)
-        try:
-            rc = p.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            _stop(p)
-            rc = "timeout after %d s" % timeout
-        except BaseException:  # Ctrl-C: the run is in its own session, so stop it here
-            _stop(p)
-            raise
-    return rc, time.time() - t0
-
-
-def tail(path, n=1500):
-    try:
-        with open(path, errors="replace") as f:
-            return f.read()[-n:]
-    except OSError:
-        return ""
-
-
 def metrics(summary, base=None):
     """Per-step figures of one run's summary.json. base: the poisson block of the summary of the
     run that wrote the checkpoint restarted from (its counters carry over into a restart)."""
@@ -230,8 +170,8 @@ def impact_checkpoint(cache, a, a_bin, scene, sets, end_time, timeout):
     os.makedirs(top, exist_ok=True)
     out = os.path.join(top, "run")
     ranks = min(2, os.cpu_count() or 1)  # a checkpoint holds global arrays: any rank count restarts it
-    cmd = voigt_cmd(a_bin, ranks, scene, out, None,
-                    sets + ["checkpoint.interval=100000000", "checkpoint.keep=1"], end_time=end_time)
+    cmd = voigt_cmd(a_bin, scene, out, sets + ["checkpoint.interval=100000000", "checkpoint.keep=1"], ranks=ranks,
+                    end_time=end_time)
     logf = os.path.join(top, "run.log")
     log("impact checkpoint: running A to t = %g once (about 6 min at 75^3): %s" % (end_time, " ".join(cmd)))
     rc, secs = run_logged(cmd, logf, timeout)
@@ -250,21 +190,6 @@ def impact_checkpoint(cache, a, a_bin, scene, sets, end_time, timeout):
 
 
 # ---------------------------------------------------------------- statistics and report
-def med(xs):
-    xs = [x for x in xs if x is not None]
-    return statistics.median(xs) if xs else None
-
-
-def fmt(x, digits=4):
-    if x is None:
-        return "-"
-    if x == 0:
-        return "0"
-    if abs(x) >= 1e4:
-        return "%.3g" % x
-    return "%.*g" % (digits, x)
-
-
 def ratio(a, b):
     return a / b if a and b else None
 
@@ -301,10 +226,6 @@ def aggregate(runs, key):
             "stages": {s: med([m["stages"].get(s) for m in ok]) for s in stages},
         }
     return out
-
-
-def spread(times):
-    return "%s-%s" % (fmt(min(times)), fmt(max(times))) if times else "-"
 
 
 def report(meta, keys, agg, runs):
@@ -373,12 +294,6 @@ def report(meta, keys, agg, runs):
             L.append("| %s | %s | %s | %s | %s |" % (name, fmt(x), fmt(y), "%.3f" % r if r else "-", share))
     failed = [r for r in runs if not r["ok"]]
     if failed:
-        L.append("")
-        L.append("## Failed runs")
-        for r in failed:
-            L.append("")
-            L.append("- %s %s, %d ranks, repeat %d: exit %s; `%s`" %
-                     (r["rev"], r["scene"], r["ranks"], r["repeat"] + 1, r["rc"], " ".join(r["cmd"])))
-            L.append("")
-            L.append("```\n%s\n```" % r["log_tail"].strip())
+        L += failed_runs(("%s %s, %d ranks, repeat %d: exit %s; `%s`" % (
+            r["rev"], r["scene"], r["ranks"], r["repeat"] + 1, r["rc"], " ".join(r["cmd"])), r["log_tail"]) for r in failed)
     return "\n".join(L) + "\n"
