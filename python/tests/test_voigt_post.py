@@ -1,47 +1,17 @@
-"""Tests of the analysis package (python/voigt_post) on a real run: a sphere of fluid in a
-fluid of the same density beside a box and a cylinder obstacle, 12 x 8 x 8 cells, outputs at
-t = 0, 0.1, 0.2.
-Standard library unittest (run by CTest as python.voigt_post; VOIGT names the voigt binary);
-the picture test needs Debian's python3-vtk9, python3-h5py and xvfb (scripts/setup --figures)."""
+"""Tests of the analysis package (python/voigt_post) on a real run (run_fixture.py): the
+frames of fields.xdmf, the scene record and the picture. test_formulas.py and test_readers.py
+test the other modules. Standard library unittest (run by CTest as python.voigt_post; VOIGT
+names the voigt binary); the picture test needs Debian's python3-vtk9, python3-h5py and xvfb
+(scripts/setup --figures)."""
 import os
 import shutil
 import subprocess
 import sys
-import tempfile
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))  # voigt_post
 from voigt_post import scene_record, xdmf  # noqa: E402
-
-SCENE = """name: carried
-domain: {lo: [0, 0, 0], hi: [1.5, 1, 1], cells: [12, 8, 8]}
-boundaries: {default: {type: slip}}
-time: {end: 0.2, dt: 0.025}
-effects: [navier_stokes, level_set, obstacles]
-level_set: {phase: ball, shape: {type: sphere, center: [0.4, 0.5, 0.5], radius: 0.25}}
-materials: {air: {density: 1, viscosity: 0.01}, ball: {density: 1, viscosity: 0.01}}
-fluid: air
-obstacles:
-  - {type: box, lo: [1.2, 0, 0], hi: [1.5, 0.25, 1]}
-  - {type: cylinder, center: [1.35, 0.8, 0.5], radius: 0.1, axis: z}
-output: {interval: 0.1, fields: [psi]}
-"""
-
-
-class RunFixture(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = tempfile.mkdtemp(prefix="voigt_post_")
-        scene = os.path.join(cls.tmp, "carried.yaml")
-        with open(scene, "w") as f:
-            f.write(SCENE)
-        cls.out = os.path.join(cls.tmp, "run")
-        voigt = os.environ.get("VOIGT", "build/voigt")
-        subprocess.run([voigt, "run", scene, "-o", cls.out], check=True, capture_output=True)
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
+from run_fixture import RunFixture  # noqa: E402
 
 
 class XdmfTest(RunFixture):

@@ -37,16 +37,17 @@ def _rows(path):
 
 
 def timeseries(outdir):
-    """OUTDIR/timeseries.csv as {column: [float per step]}. Values that are not numbers (the text
-    column dt_reason, empty cells) are left out of their column."""
+    """OUTDIR/timeseries.csv as {column: [float per step]}. Values that are not numbers (empty
+    cells) are left out of their column; a column of text (dt_reason) is left out."""
     head, rows = _rows(os.path.join(outdir, "timeseries.csv"))
     cols = {}
     for row in rows:
         for k, v in zip(head, row):
             try:
-                cols.setdefault(k, []).append(float(v))
+                x = float(v)
             except ValueError:
-                pass
+                continue
+            cols.setdefault(k, []).append(x)
     return cols
 
 
