@@ -1,6 +1,6 @@
 """The level set's surface psi = 0 coloured by a field, like the paper's Figs. 1-2: one row per
 run, one column per output time, the obstacles of the run's scene record in grey, headless to
-PNG with VTK (Debian python3-vtk9, python3-h5py; VTK needs an X server, so without DISPLAY the
+PNG with VTK (Debian python3-vtk9, python3-h5py: fields.py; VTK needs an X server, so without DISPLAY the
 command re-runs itself under xvfb-run).
 
     scripts/picture output/demo -o output/demo.png [--times 0.1 0.2 0.3] [--field log10_S2]
@@ -17,6 +17,7 @@ import shutil
 import subprocess
 import sys
 
+from . import fields
 from .scene_record import scene
 from .xdmf import frames
 
@@ -40,13 +41,11 @@ def _headless():
 
 def surface(path, orig, sp, field):
     """psi = 0 as smooth-shaded polydata; with `field`, its value one cell on the psi > 0 side."""
-    import h5py
     import numpy as np
     import vtk
     from vtk.util import numpy_support as ns
-    with h5py.File(path, "r") as f:
-        psi = f["psi"][...]
-        col = f[field][...] if field else None
+    psi = fields.read(path, "psi")
+    col = fields.read(path, field) if field else None
     gz, gy, gx = np.gradient(psi, sp[2], sp[1], sp[0])
     arrays = {"psi": psi, "grad": np.stack([gx, gy, gz], axis=-1)}
     if col is not None:
@@ -157,13 +156,11 @@ def draw(runs, times, output, field=None, title="", rng=None, panel=(260, 230), 
     """Renders runs [(dir, label)] x times to `output` (PNG); returns (width, height, range).
     `field` None: log10_S2 when the first frame has it, else a plain surface. Obstacles come
     from each run's scene record; `legacy_obstacles` (a scene-like dict) for runs without one."""
-    import h5py
     import numpy as np
     import vtk
     from vtk.util import numpy_support as ns
     if field is None:
-        with h5py.File(frames(runs[0][0])[0].path, "r") as f:
-            field = "log10_S2" if "log10_S2" in f else ""
+        field = "log10_S2" if "log10_S2" in fields.names(frames(runs[0][0])[0].path) else ""
     rows, cols = len(runs), len(times)
     pw, ph = panel
     top, bar = 28, (60 if field else 0)
