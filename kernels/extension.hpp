@@ -9,9 +9,11 @@
 // neighbour's direction and the normal: neighbours along the normal dominate,
 // tangential ones (cosine ~ 0) drop out. Sweep s reaches the cells s layers
 // out; the values persist between steps, so the iteration continues in time.
-// Cells with psi > below are copied unchanged. Source and destination are
-// distinct fields (Jacobi), so the result is independent of the order and of
-// the rank decomposition; the source needs fresh ghosts.
+// Cells with psi > below keep their value: the sweeps run over the fluid-side
+// cells only (fluidSide), after copySolidSide has made both buffers agree on the
+// others. Source and destination are distinct fields (Jacobi), so the result is
+// independent of the order and of the rank decomposition; the source needs
+// fresh ghosts.
 #include <Kokkos_Core.hpp>
 
 #include <cmath>
@@ -24,6 +26,41 @@
 namespace voigt {
 namespace extension {
 
+// The listed cells with psi <= below, packed into `side`; returns their count.
+inline int fluidSide(const Field& psi, const Grid& g, const IntList& cell, int n, double below, const IntList& side) {
+  const Unpack up{g.ext[0], g.ext[1]};
+  int count = 0;
+  Kokkos::parallel_scan(
+      "extension_fluid_side", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p, int& upd, bool final) {
+        int i, j, k;
+        up(cell(p), i, j, k);
+        if (psi(i, j, k) <= below) {
+          if (final) side(upd) = cell(p);
+          ++upd;
+        }
+      },
+      count);
+  return count;
+}
+
+// dst = src on the listed cells with psi > below (the cells the sweeps leave alone).
+inline void copySolidSide(const Grid& g, const Field& psi, const SymTensorField& src, const SymTensorField& dst,
+                          const IntList& cell, int n, double below) {
+  if (n == 0) return;
+  const Unpack up{g.ext[0], g.ext[1]};
+  const SymTensorField s = src, d = dst;
+  Kokkos::parallel_for(
+      "extension_copy_solid", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p) {
+        int i, j, k;
+        up(cell(p), i, j, k);
+        if (psi(i, j, k) > below) {
+          VOIGT_UNROLL
+          for (int c = 0; c < 6; ++c) d.c[c](i, j, k) = s.c[c](i, j, k);
+        }
+      });
+}
+
+// One sweep over the fluid-side cells `cell` (fluidSide).
 inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, const SymTensorField& dst,
                   const IntList& cell, int n, double below = 0) {
   if (n == 0) return;

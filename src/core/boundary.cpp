@@ -181,28 +181,21 @@ void fillNodeGhostsEven(const Grid& g, const Field& f) {
 }
 
 void fillCellGhostsEven(const Grid& g, const Field& f) {
+  // Each ghost layer mirrors the owned cells: ghost first - m <- first + m - 1,
+  // last + m <- last - m + 1, i.e. src = M - idx along d. One loop over the
+  // ghost slab (full extent across, so edges and corners follow the d order).
   VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) {
     VOIGT_UNROLL
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? !g.atLo(d) : !g.atHi(d)) continue;
+      const int first = g.ng, last = g.ng + g.ln[d] - 1;
       Range3 r{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};
-      r.b[d] = 0;
-      r.e[d] = 1;
-      const int ng = g.ng, first = g.ng, last = g.ng + g.ln[d] - 1;
+      r.b[d] = side == 0 ? first - g.ng : last + 1;
+      r.e[d] = side == 0 ? first : last + 1 + g.ng;
+      const int M = side == 0 ? 2 * first - 1 : 2 * last + 1;
       for_each3("cell_ghosts", r, KOKKOS_LAMBDA(int i, int j, int k) {
-            int idx[3] = {i, j, k};
-            for (int m = 1; m <= ng; ++m) {
-              int src[3] = {i, j, k};
-              if (side == 0) {
-                idx[d] = first - m;
-                src[d] = first + m - 1;
-              } else {
-                idx[d] = last + m;
-                src[d] = last - m + 1;
-              }
-              f(idx[0], idx[1], idx[2]) = f(src[0], src[1], src[2]);
-            }
+            f(i, j, k) = f(d == 0 ? M - i : i, d == 1 ? M - j : j, d == 2 ? M - k : k);
           });
     }
   }

@@ -24,10 +24,17 @@ double assemblePoisson(const Values& vals, const RowMap& rowPtr, const SlotView&
         "poisson_fill", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r, double& rowMax) {
           int l[3];
           rw.cell(r, l[0], l[1], l[2]);
+          // The 24 node coefficients around the cell, read once: cv[3 corner + d].
+          double cv[24];
           int mask = 0; // bit q = 3 corner + d: coef_d(corner) != 0
-          for (int q = 0; q < 24; ++q)
-            if (coef.c[q % 3](l[0] + ((q / 3) & 1), l[1] + ((q / 6) & 1), l[2] + ((q / 12) & 1)) != 0)
-              mask |= 1 << q;
+          VOIGT_UNROLL
+          for (int cn = 0; cn < 8; ++cn)
+            VOIGT_UNROLL
+            for (int d = 0; d < 3; ++d) {
+              const double v = coef.c[d](l[0] + (cn & 1), l[1] + ((cn >> 1) & 1), l[2] + ((cn >> 2) & 1));
+              cv[3 * cn + d] = v;
+              mask |= (v != 0) << (3 * cn + d);
+            }
           if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
           pattern(r) = mask;
           for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) vals(p) = 0;
@@ -39,7 +46,7 @@ double assemblePoisson(const Values& vals, const RowMap& rowPtr, const SlotView&
               const double w = G.nodeWeight(n[0], n[1], n[2]);
               double cf[3];
               for (int d = 0; d < 3; ++d)
-                cf[d] = coef.c[d](n[0], n[1], n[2]) / (w * 16 * G.h[d] * G.h[d]) * (a[d] ? 1 : -1);
+                cf[d] = cv[3 * cn + d] / (w * 16 * G.h[d] * G.h[d]) * (a[d] ? 1 : -1);
               if (cf[0] == 0 && cf[1] == 0 && cf[2] == 0) continue;
               for (int cm = 0; cm < 8; ++cm) {
                 const int b[3] = {cm & 1, (cm >> 1) & 1, (cm >> 2) & 1}; // 1: c' on the high side of n
@@ -53,13 +60,14 @@ double assemblePoisson(const Values& vals, const RowMap& rowPtr, const SlotView&
               }
             }
           } else {
+            VOIGT_UNROLL
             for (int d = 0; d < 3; ++d)
+              VOIGT_UNROLL
               for (int s = 0; s < 2; ++s) {
-                double beta = 0; // mean coef_d over the face's 4 nodes
-                for (int cn = 0; cn < 8; ++cn) {
-                  const int a[3] = {cn & 1, (cn >> 1) & 1, (cn >> 2) & 1};
-                  if (a[d] == s) beta += 0.25 * coef.c[d](l[0] + a[0], l[1] + a[1], l[2] + a[2]);
-                }
+                double beta = 0; // mean coef_d over the face's 4 nodes (corners in order)
+                VOIGT_UNROLL
+                for (int cn = 0; cn < 8; ++cn)
+                  if (((cn >> d) & 1) == s) beta += 0.25 * cv[3 * cn + d];
                 const double c = beta / (G.h[d] * G.h[d]);
                 if (G.cellExists(d, l[d] + (s ? 1 : -1))) {
                   int o = kCentre + (s ? 1 : -1) * (d == 0 ? 1 : d == 1 ? 3 : 9);

@@ -81,11 +81,14 @@ void Elasticity::advect(State& st) {
 void Elasticity::extend(State& st) {
   const SymTensorField t = solidStressField(st.fields), b = symTensorField(st.fields, "solid_stress_old");
   Field psi = st.fields.scalar("psi");
+  // Only the fluid-side cells change; both buffers hold the others' values.
+  const int nSide = extension::fluidSide(psi, st.grid, owned_, nOwned_, below_, side_cells_);
+  extension::copySolidSide(st.grid, psi, t, b, owned_, nOwned_, below_);
   for (int s = 0; s < sweeps_; ++s) {
     const SymTensorField& from = s % 2 == 0 ? t : b;
     const SymTensorField& to = s % 2 == 0 ? b : t;
     refresh(st, from); // collective
-    extension::sweep(st.grid, psi, from, to, owned_, nOwned_, below_);
+    extension::sweep(st.grid, psi, from, to, side_cells_, nSide, below_);
   }
   refresh(st, t); // sweeps_ is even: the result is in tau_S
 }

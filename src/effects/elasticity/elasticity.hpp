@@ -105,6 +105,7 @@ class Elasticity : public Effect {
   int sweeps_ = 4;     // extension sweeps per step (even: the result lands in tau_S)
 
   elastic::IntList owned_, prev_, grown_;
+  elastic::IntList side_cells_; // extend: the listed cells the extension sweeps write
   int nOwned_ = 0, nPrev_ = 0, nGrown_ = 0;
 
   // Diagnostics and counters for summary.json.
