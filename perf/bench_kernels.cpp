@@ -6,8 +6,9 @@
 // beside each benchmark), and frac_triad = GBps / the STREAM triad bandwidth
 // measured at start in this process (3 x 80 MB, best of 5; or VOIGT_TRIAD_GBS
 // from a perf_stream run), both timed by CPU time on a single-threaded backend
-// (perf/common.hpp seconds()). Band kernels count band cells only.
+// (perf/common_kokkos.hpp seconds()). Band kernels count band cells only.
 // Usage: perf_kernels [--benchmark_filter=...] ; grid n^3 from VOIGT_BENCH_N (64).
+// VOIGT_NO_TPETRA (tests/device, a Kokkos-only build, e.g. for CUDA): without the Poisson benchmarks.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -15,7 +16,7 @@
 #include <cstdlib>
 #include <memory>
 
-#include "common.hpp"
+#include "common_kokkos.hpp"
 #include "core/halo.hpp"
 #include "kernels/advection.hpp"
 #include "kernels/advection_faces.hpp"
@@ -24,12 +25,32 @@
 #include "kernels/projection_ops.hpp"
 #include "kernels/reinit.hpp"
 #include "kernels/stress.hpp"
+#ifndef VOIGT_NO_TPETRA
 #include "solvers/poisson.hpp"
+#endif
 
 using namespace voigt;
 
 namespace {
 double gTriad = 0; // STREAM triad, bytes per second
+
+// A sphere of radius 0.3 (psi > 0 inside: the solid; |psi| the distance) and a smooth flow.
+// A free function: nvcc allows no device lambda in a constructor (tests/device).
+void fillSphereAndFlow(const Grid& g, const VecField& u, const Field& psi, const Field& p) {
+  auto uu = u;
+  auto ps = psi, pp = p;
+  const int ng = g.ng;
+  const double hh = g.h[0];
+  Kokkos::parallel_for(
+      Policy3({0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}), KOKKOS_LAMBDA(int i, int j, int k) {
+        uu.c[0](i, j, k) = std::sin(0.1 * i) * std::cos(0.2 * j);
+        uu.c[1](i, j, k) = std::cos(0.1 * i) * std::sin(0.3 * k);
+        uu.c[2](i, j, k) = std::sin(0.2 * j + 0.1 * k);
+        const double x = (i - ng + 0.5) * hh - 0.5, y = (j - ng + 0.5) * hh - 0.5, z = (k - ng + 0.5) * hh - 0.5;
+        ps(i, j, k) = 0.3 - std::sqrt(x * x + y * y + z * z);
+        pp(i, j, k) = std::cos(6.0 * x) * std::sin(4.0 * y + z);
+      });
+}
 
 struct Fixture {
   Grid g;
@@ -60,20 +81,7 @@ struct Fixture {
     p = mk("p"), div = mk("div"), mu = mk("mu"), psi = mk("psi"), rhsCell = mk("rhs_cell");
     psi1 = mk("psi1"), psiT = mk("psiT"), dH = mk("dH"), gm = mk("gm"), old = mk("old");
     Kokkos::deep_copy(mu, 1e-3);
-    auto uu = u;
-    auto ps = psi, pp = p;
-    const int ng = g.ng;
-    const double hh = h;
-    // A sphere of radius 0.3 (psi > 0 inside: the solid; |psi| the distance) and a smooth flow.
-    Kokkos::parallel_for(
-        Policy3({0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}), KOKKOS_LAMBDA(int i, int j, int k) {
-          uu.c[0](i, j, k) = std::sin(0.1 * i) * std::cos(0.2 * j);
-          uu.c[1](i, j, k) = std::cos(0.1 * i) * std::sin(0.3 * k);
-          uu.c[2](i, j, k) = std::sin(0.2 * j + 0.1 * k);
-          const double x = (i - ng + 0.5) * hh - 0.5, y = (j - ng + 0.5) * hh - 0.5, z = (k - ng + 0.5) * hh - 0.5;
-          ps(i, j, k) = 0.3 - std::sqrt(x * x + y * y + z * z);
-          pp(i, j, k) = std::cos(6.0 * x) * std::sin(4.0 * y + z);
-        });
+    fillSphereAndFlow(g, u, psi, p);
     const size_t cap = size_t(g.cellsOwned());
     const size_t capG = size_t(cellRange(g, 1).size());
     owned = IntList("owned", cap), grown = IntList("grown", capG);
@@ -266,6 +274,7 @@ void BM_HaloVector(benchmark::State& s) {
   for (auto _ : s) h.exchange(f.u);
   s.counters["halo_MB_per_exchange"] = double(h.bytes) / s.iterations() / 1e6;
 }
+#ifndef VOIGT_NO_TPETRA
 // --- Poisson (Tpetra through PoissonSolver) ---
 std::unique_ptr<PoissonSolver> solver(bool exact, const char* pc, int maxIt) {
   PoissonSettings cfg;
@@ -309,6 +318,7 @@ void BM_CGIteration(benchmark::State& s) {
   const double b[3] = {212, 212 + 40, 212 + 232}; // Jacobi: z = D^-1 r (24) + null-mode removal (~16)
   report(s, b[s.range(0)]);
 }
+#endif
 } // namespace
 
 // Registered at run time: threaded backends time by wall clock (the default,
@@ -336,8 +346,10 @@ void registerAll(bool wall) {
   add("Divergence", BM_Divergence);
   add("SubtractGradient", BM_SubtractGradient);
   add("HaloVector", BM_HaloVector);
+#ifndef VOIGT_NO_TPETRA
   add("PoissonMatvec", BM_PoissonMatvec)->Arg(0)->Arg(1);
   add("CGIteration", BM_CGIteration)->Arg(0)->Arg(1)->Arg(2)->UseManualTime();
+#endif
 }
 
 int main(int argc, char** argv) {

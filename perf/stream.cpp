@@ -1,7 +1,7 @@
 // Memory bandwidth of this machine, STREAM-style (McCalpin's copy, scale, add,
 // triad) with Kokkos Views on the default execution space (Serial build: one
 // core; an OpenMP build uses its threads). Arrays far larger than the caches;
-// best of N repeats; bytes counted as STREAM does (perf/common.hpp stream()).
+// best of N repeats; bytes counted as STREAM does (perf/common_kokkos.hpp stream()).
 // Timed by process CPU time on one thread (robust to other jobs time-slicing
 // this core), by wall time when threaded; the best-wall-time column is printed too.
 // Usage: perf_stream [MB per array, default 160] [repeats, default 10] [--json FILE]
@@ -11,7 +11,7 @@
 #include <cstring>
 #include <string>
 
-#include "common.hpp"
+#include "common_kokkos.hpp"
 
 int main(int argc, char** argv) {
   voigt::perf::Env env(argc, argv);

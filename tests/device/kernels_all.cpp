@@ -1,0 +1,309 @@
+// Every launcher of kernels/*.hpp called once (issue 25): compiled with nvcc against a
+// Kokkos-CUDA (tests/device/CMakeLists.txt) each kernel lambda becomes device code, so
+// host-only code in a kernel fails to compile there; compiled in the host build (CTest
+// device.kernels_all, Serial) it proves the calls themselves run. Each call's result is
+// reduced to a checksum (sum of |x| over the range it wrote, or the value it returns).
+//   voigt_kernels_all [--out FILE]                 print (and write) "name value" lines
+//   voigt_kernels_all --compare REF [--rtol R]     also compare with REF (default 1e-9):
+//                                                  a GPU run against the Serial reference
+// The launcher list is checked at configure time (tests/device/launchers.cmake): a new
+// `inline` function in kernels/ must be called here.
+#include <Kokkos_Core.hpp>
+#include <mpi.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "kernels/advection.hpp"
+#include "kernels/advection_faces.hpp"
+#include "kernels/elastic.hpp"
+#include "kernels/extension.hpp"
+#include "kernels/heaviside.hpp"
+#include "kernels/levelset.hpp"
+#include "kernels/projection_ops.hpp"
+#include "kernels/reductions.hpp"
+#include "kernels/reinit.hpp"
+#include "kernels/stress.hpp"
+
+using namespace voigt;
+
+namespace {
+
+std::vector<std::pair<std::string, double>> gSums;
+void put(const std::string& name, double v) { gSums.emplace_back(name, v); }
+
+double sumAbs(const Field& f, Range3 r) {
+  double s = 0;
+  Kokkos::parallel_reduce(
+      "check_sum_abs", r.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, double& acc) { acc += Kokkos::Experimental::fabs(f(i, j, k)); }, s);
+  return s;
+}
+double sumAbs(const VecField& v, Range3 r) { return sumAbs(v.c[0], r) + sumAbs(v.c[1], r) + sumAbs(v.c[2], r); }
+double sumAbs(const SymTensorField& t, Range3 r) {
+  double s = 0;
+  for (int c = 0; c < 6; ++c) s += sumAbs(t.c[c], r);
+  return s;
+}
+double sumList(const IntList& l, int n) {
+  double s = 0;
+  Kokkos::parallel_reduce(
+      "check_sum_list", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int q, double& acc) { acc += double(l(q)) * double(q % 7 + 1); }, s);
+  return s;
+}
+
+double sumBand(const reinit::BandViews& b, int n) {
+  double s = 0;
+  const auto sg = b.sgn, di = b.dist, co = b.coef;
+  Kokkos::parallel_reduce(
+      "check_sum_band", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int q, double& acc) {
+        acc += Kokkos::Experimental::fabs(sg(q)) + Kokkos::Experimental::fabs(di(q)) + Kokkos::Experimental::fabs(co(q));
+      },
+      s);
+  return s;
+}
+
+struct Fields {
+  VecField u, u2, rhs, coef;
+  Field p, psi, rho, mu, q, o, rhsCell, div, dH, gm, psi1, psiT;
+  SymTensorField tau, tauS, tau2;
+};
+
+Field mk(const Grid& g, const char* name) { return Field(std::string(name), g.ext[0], g.ext[1], g.ext[2]); }
+
+// Smooth data over the whole array, ghosts included (no halo exchange needed): a sphere
+// of radius 0.3 for psi (> 0 inside), trigonometric velocity, density and viscosity.
+void fill(const Grid& g, Fields& f) {
+  const GridGeom G(g);
+  const double lo0 = g.lo[0], lo1 = g.lo[1], lo2 = g.lo[2];
+  const Field p = f.p, psi = f.psi, rho = f.rho, mu = f.mu, q = f.q, o = f.o;
+  const VecField u = f.u, u2 = f.u2, coef = f.coef;
+  const SymTensorField tS = f.tauS;
+  Kokkos::parallel_for(
+      "check_fill", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}}.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double x = lo0 + (G.glob(0, i) + 0.5) * G.h[0], y = lo1 + (G.glob(1, j) + 0.5) * G.h[1],
+                     z = lo2 + (G.glob(2, k) + 0.5) * G.h[2];
+        const double X = x - 0.5, Y = y - 0.5, Z = z - 0.5, r = Kokkos::Experimental::sqrt(X * X + Y * Y + Z * Z);
+        const double s1 = Kokkos::Experimental::sin(6.0 * x), c1 = Kokkos::Experimental::cos(5.0 * y),
+                     s2 = Kokkos::Experimental::sin(4.0 * z + x);
+        u.c[0](i, j, k) = s1 * c1;
+        u.c[1](i, j, k) = c1 * s2 - 0.3;
+        u.c[2](i, j, k) = s2 + 0.2 * s1;
+        VOIGT_UNROLL
+        for (int d = 0; d < 3; ++d) {
+          u2.c[d](i, j, k) = u.c[d](i, j, k);
+          coef.c[d](i, j, k) = 1.0 + 0.1 * d;
+        }
+        psi(i, j, k) = 0.3 - r;
+        q(i, j, k) = 0.3 - r + 0.05 * s1;
+        o(i, j, k) = q(i, j, k);
+        p(i, j, k) = Kokkos::Experimental::cos(6.0 * X) * Kokkos::Experimental::sin(4.0 * Y + Z);
+        rho(i, j, k) = 1.0 + 0.5 * s2;
+        mu(i, j, k) = 1e-3 * (1.0 + 0.5 * c1);
+        VOIGT_UNROLL
+        for (int c = 0; c < 6; ++c) tS.c[c](i, j, k) = r < 0.3 ? (c < 3 ? 1.0 : 0.1) * (1.0 + X) : 0.0;
+      });
+}
+
+void advection(const Grid& g, Fields& f, FluxScratch& scratch) {
+  const Range3 nodes = nodeRange(g), cells = cellRange(g);
+  const Limiter lims[4] = {Limiter::MinMod, Limiter::VanLeer, Limiter::MC, Limiter::None};
+  for (int l = 0; l < 4; ++l) {
+    const std::string L = std::to_string(l);
+    Kokkos::deep_copy(f.rhs.c[0], 0.0);
+    addNodeAdvection(g, f.u.c[0], f.u, f.rhs.c[0], nodes, lims[l]);
+    put("addNodeAdvection." + L, sumAbs(f.rhs.c[0], nodes));
+    Kokkos::deep_copy(f.rhs.c[0], 0.0);
+    addNodeAdvectionFaces(g, f.u.c[0], f.u, f.rhs.c[0], nodes, lims[l], scratch);
+    put("addNodeAdvectionFaces." + L, sumAbs(f.rhs.c[0], nodes));
+    for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.rhs.c[c], 0.0);
+    addVelocityAdvectionFaces(g, f.u, f.rhs, nodes, lims[l], scratch);
+    put("addVelocityAdvectionFaces." + L, sumAbs(f.rhs, nodes));
+    for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.rhs.c[c], 0.0);
+    addMomentumAdvection(g, f.rho, f.u, f.rho, f.div, f.rhs, nodes, lims[l]);
+    put("addMomentumAdvection." + L, sumAbs(f.rhs, nodes) + sumAbs(f.div, nodes));
+    for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.rhs.c[c], 0.0);
+    addMomentumAdvectionFaces(g, f.rho, f.u, f.rho, f.div, f.rhs, nodes, lims[l], scratch);
+    put("addMomentumAdvectionFaces." + L, sumAbs(f.rhs, nodes) + sumAbs(f.div, nodes));
+    Kokkos::deep_copy(f.rhsCell, 0.0);
+    addCellAdvection(g, f.q, f.u, f.rhsCell, cells, lims[l]);
+    put("addCellAdvection." + L, sumAbs(f.rhsCell, cells));
+    Kokkos::deep_copy(f.psi1, f.q);
+    advanceCellAdvection(g, f.psi1, f.o, f.u, cells, lims[l], 1e-3, 1.0, true, scratch);
+    advanceCellAdvection(g, f.psi1, f.o, f.u, cells, lims[l], 1e-3, 0.5, false, scratch);
+    put("advanceCellAdvection." + L, sumAbs(f.psi1, cells));
+  }
+  put("faceRange", double(faces::faceRange(cells, 1).size()));
+}
+
+void levelSet(const Grid& g, Fields& f) {
+  const Range3 cells = cellRange(g);
+  const double kappa = 2 * g.h[0];
+  Field rho2 = f.rhsCell, mu2 = f.gm;
+  blendProperties(f.psi, kappa, 1000.0, 1.0, 0.1, 1e-3, rho2, mu2, cells);
+  put("blendProperties", sumAbs(rho2, cells) + sumAbs(mu2, cells));
+  const PhaseMeasures m = localPhaseMeasures(g, f.psi, kappa);
+  put("localPhaseMeasures.volume", m.volume);
+  put("localPhaseMeasures.sharp", m.sharpVolume);
+  put("localPhaseMeasures.area", m.area);
+  double vol = 0, dvol = 0;
+  localVolumeAndDerivative(g, f.psi, kappa, vol, dvol);
+  put("localVolumeAndDerivative.vol", vol);
+  put("localVolumeAndDerivative.dvol", dvol);
+  Kokkos::deep_copy(f.psi1, f.q);
+  shiftField(g, f.psi1, 0.01);
+  put("shiftField", sumAbs(f.psi1, cells));
+  const bool open[6] = {true, true, true, true, true, true};
+  put("localOpenBoundaryFlux", localOpenBoundaryFlux(g, f.q, f.u, 0.2, open));
+}
+
+void projectionStressReductions(const Grid& g, Fields& f) {
+  const Range3 nodes = nodeRange(g), cells = cellRange(g);
+  divergence(g, f.u, f.div, cells);
+  put("divergence", sumAbs(f.div, cells));
+  subtractGradient(g, f.p, f.coef, 1e-2, f.u2, nodes);
+  put("subtractGradient", sumAbs(f.u2, nodes));
+  viscousStress(g, f.u, f.mu, f.tau, cellRange(g, 1));
+  put("viscousStress", sumAbs(f.tau, cellRange(g, 1)));
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.rhs.c[c], 0.0);
+  addStressDivergence(g, f.tau, f.coef, f.rhs, nodes);
+  put("addStressDivergence", sumAbs(f.rhs, nodes));
+  put("globalMaxAbs", globalMaxAbs(g, f.p, cells));
+  put("countNonFinite", double(countNonFinite(f.p, cells)));
+  put("globalSum", globalSum(g, 0.25));
+  put("kineticEnergy", kineticEnergy(g, f.u, f.rho));
+}
+
+void elasticity(const Grid& g, Fields& f) {
+  const double h = g.h[0];
+  const IntList owned("owned", size_t(g.cellsOwned())), grown("grown", size_t(cellRange(g, 1).size()));
+  const IntList nz("nonzero", size_t(g.cellsOwned()));
+  const int nOwned = elastic::buildActiveList(g, f.psi, -3 * h, cellRange(g), owned);
+  const int nGrown = elastic::buildActiveList(g, f.psi, -3 * h, cellRange(g, 1), grown);
+  put("buildActiveList.owned", nOwned), put("buildActiveList.ownedList", sumList(owned, nOwned));
+  put("buildActiveList.grown", nGrown), put("buildActiveList.grownList", sumList(grown, nGrown));
+  const int nNz = elastic::buildNonzeroList(g, f.tauS, nz);
+  put("buildNonzeroList", nNz), put("buildNonzeroList.list", sumList(nz, nNz));
+  const Range3 box = elastic::listBox(g, owned, nOwned);
+  put("listBox", box.b[0] + 10.0 * box.b[1] + 100.0 * box.b[2] + 1000.0 * box.e[0] + 1e4 * box.e[1] + 1e5 * box.e[2]);
+  const Range3 cells = cellRange(g, 1);
+  for (int c = 0; c < 6; ++c) Kokkos::deep_copy(f.tau2.c[c], f.tauS.c[c]);
+  elastic::jaumannUpdate(g, f.u, f.tau2, 1.0, 1e-2, owned, nOwned);
+  put("jaumannUpdate.cayley", sumAbs(f.tau2, cells));
+  elastic::jaumannUpdate(g, f.u, f.tau2, 1.0, 1e-2, owned, nOwned, 0.5, elastic::Rotation::Explicit, f.psi, 0.0);
+  put("jaumannUpdate.explicit", sumAbs(f.tau2, cells));
+  elastic::addSolidStress(g, f.psi, 2 * h, f.tauS, f.tau, grown, nGrown);
+  put("addSolidStress", sumAbs(f.tau, cells));
+  extension::sweep(g, f.psi, f.tauS, f.tau2, grown, nGrown, 0.0);
+  put("sweep", sumAbs(f.tau2, cells));
+  put("secondInvariant", elastic::secondInvariant(1, 2, 3, 0.1, 0.2, 0.3));
+}
+
+void reinitialisation(const Grid& g, Fields& f) {
+  const double h = g.h[0], band = 6 * h;
+  const size_t cap = size_t(g.cellsOwned());
+  reinit::BandViews b;
+  b.cell = IntList("band", cap), b.flags = IntList("flags", cap);
+  b.sgn = reinit::RealList("sgn", cap), b.dist = reinit::RealList("dist", cap), b.coef = reinit::RealList("coef", cap);
+  const int n = reinit::buildBandList(g, f.q, band, b.cell);
+  put("buildBandList", n), put("buildBandList.list", sumList(b.cell, n));
+  reinit::deltaField(g, f.q, f.dH, 2 * h);
+  put("deltaField", sumAbs(f.dH, cellRange(g)));
+  reinit::gradMagField(g, f.q, f.dH, f.gm);
+  put("gradMagField", sumAbs(f.gm, cellRange(g)));
+  reinit::prepareBand(g, b, n, f.q, f.dH, f.gm, band, true);
+  put("prepareBand.flags", sumList(b.flags, n)), put("prepareBand.values", sumBand(b, n));
+  Kokkos::deep_copy(f.psi1, f.q), Kokkos::deep_copy(f.psiT, f.q);
+  const double dtau = 0.5 * h;
+  for (int sub = 0; sub < 2; ++sub) {
+    reinit::eikonalStage(g, b, n, f.q, f.q, f.psi1, 0.0, dtau, sub == 1);
+    reinit::eikonalStage(g, b, n, f.psi1, f.q, f.psiT, 0.5, dtau, sub == 1);
+    put("eikonalStage." + std::to_string(sub), sumAbs(f.psiT, cellRange(g)));
+  }
+  reinit::applyConstraint(g, b, n, f.psiT, f.q, f.dH, f.psi1);
+  put("applyConstraint", sumAbs(f.psi1, cellRange(g)));
+  reinit::copyBand(g, b, n, f.psi1, f.psiT);
+  put("copyBand", sumAbs(f.psiT, cellRange(g)));
+  put("maxGradError", reinit::maxGradError(g, b, n, f.q, band));
+  put("smoothedDelta", smoothedDelta(0.01, 0.05) + smoothedHeaviside(0.01, 0.05) + sharpHeaviside(-1.0));
+}
+
+int compare(const std::string& ref, double rtol) {
+  std::ifstream in(ref);
+  if (!in) {
+    std::fprintf(stderr, "voigt_kernels_all: cannot read %s\n", ref.c_str());
+    return 2;
+  }
+  std::map<std::string, double> want;
+  std::string name;
+  double v;
+  while (in >> name >> v) want[name] = v;
+  int bad = 0;
+  for (const auto& [k, got] : gSums) {
+    const auto it = want.find(k);
+    const double w = it == want.end() ? NAN : it->second;
+    const double err = std::fabs(got - w) / std::fmax(std::fabs(w), 1e-12);
+    if (!(err <= rtol)) {
+      std::printf("MISMATCH %s: %.17g, reference %.17g (relative %.3g)\n", k.c_str(), got, w, err);
+      ++bad;
+    }
+  }
+  std::printf("%s: %zu checksums, %d outside rtol %.1g of %s\n", bad ? "FAIL" : "PASS", gSums.size(), bad, rtol,
+              ref.c_str());
+  return bad ? 1 : 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int code = 0;
+  {
+    Kokkos::ScopeGuard kokkos(argc, argv);
+    std::string out, ref;
+    double rtol = 1e-9;
+    for (int a = 1; a + 1 < argc; ++a) {
+      if (!std::strcmp(argv[a], "--out")) out = argv[++a];
+      else if (!std::strcmp(argv[a], "--compare")) ref = argv[++a];
+      else if (!std::strcmp(argv[a], "--rtol")) rtol = std::atof(argv[++a]);
+    }
+    // 20 x 16 x 12 cells on one rank: x and z walls (open-boundary flux, node weights), y periodic.
+    Grid g = makeGrid(MPI_COMM_SELF, {20, 16, 12}, {0, 0, 0}, {1, 0.8, 0.6}, {false, true, false});
+    {
+      Fields f;
+      for (int c = 0; c < 3; ++c)
+        f.u.c[c] = mk(g, "u"), f.u2.c[c] = mk(g, "u2"), f.rhs.c[c] = mk(g, "rhs"), f.coef.c[c] = mk(g, "coef");
+      f.p = mk(g, "p"), f.psi = mk(g, "psi"), f.rho = mk(g, "rho"), f.mu = mk(g, "mu"), f.q = mk(g, "q");
+      f.o = mk(g, "o"), f.rhsCell = mk(g, "rhs_cell"), f.div = mk(g, "div"), f.dH = mk(g, "dH"), f.gm = mk(g, "gm");
+      f.psi1 = mk(g, "psi1"), f.psiT = mk(g, "psiT");
+      for (int c = 0; c < 6; ++c) f.tau.c[c] = mk(g, "tau"), f.tauS.c[c] = mk(g, "tauS"), f.tau2.c[c] = mk(g, "tau2");
+      FluxScratch scratch;
+      fill(g, f);
+      advection(g, f, scratch);
+      levelSet(g, f);
+      projectionStressReductions(g, f);
+      elasticity(g, f);
+      reinitialisation(g, f);
+    }
+    freeGrid(g);
+    std::printf("voigt_kernels_all: Kokkos %s, %zu checksums\n", Kokkos::DefaultExecutionSpace::name(), gSums.size());
+    for (const auto& [k, v] : gSums) std::printf("%s %.17g\n", k.c_str(), v);
+    if (!out.empty()) {
+      std::ofstream o(out);
+      o.precision(17);
+      for (const auto& [k, v] : gSums) o << k << ' ' << v << '\n';
+    }
+    if (!ref.empty()) code = compare(ref, rtol);
+  }
+  MPI_Finalize();
+  return code;
+}
