@@ -205,6 +205,11 @@ void elasticity(const Grid& g, Fields& f) {
   put("addSolidStress", sumAbs(f.tau, cells));
   extension::sweep(g, f.psi, f.tauS, f.tau2, grown, nGrown, 0.0);
   put("sweep", sumAbs(f.tau2, cells));
+  const IntList side("side", size_t(nGrown > 0 ? nGrown : 1));
+  const int nSide = extension::fluidSide(f.psi, g, grown, nGrown, 0.0, side);
+  put("fluidSide", nSide), put("fluidSide.list", sumList(side, nSide));
+  extension::copySolidSide(g, f.psi, f.tau, f.tau2, grown, nGrown, 0.0);
+  put("copySolidSide", sumAbs(f.tau2, cells));
   put("secondInvariant", elastic::secondInvariant(1, 2, 3, 0.1, 0.2, 0.3));
 }
 
