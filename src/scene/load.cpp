@@ -258,6 +258,7 @@ void readSettings(const Section& top, Scene& sc) {
   P.multigridRefresh = int(p.integer("multigrid_refresh", P.multigridRefresh, 0, 1000000));
   P.multigridSmoother = p.choice("multigrid_smoother", P.multigridSmoother, {"sgs", "chebyshev"});
   P.chebyshevDegree = int(p.integer("chebyshev_degree", P.chebyshevDegree, 1, 20));
+  P.coarseSweeps = int(p.integer("multigrid_coarse_sweeps", P.coarseSweeps, 1, 1000));
   P.onCap = p.choice("on_cap", P.onCap, {"warn", "stop"});
   p.finish();
 

@@ -75,6 +75,12 @@ struct ProjectionCfg {
   // summary.json and the end-of-run line) or stop (the run fails, exit code 3).
   std::string onCap = "warn";
   int chebyshevDegree = 2;
+  // Multigrid only: SGS sweeps on the coarsest level (MueLu's RELAXATION coarse solver:
+  // KLU2 fails on the singular operator). With the 7-point operator the coarsest level
+  // holds up to 2000 rows, which one sweep hardly solves: 10 sweeps halve the CG
+  // iterations at 64^3-75^3 (13.3 -> 6.6 on the falling block) for a negligible cost
+  // (perf/README.md, "The coarsest level").
+  int coarseSweeps = 10;
 };
 
 struct AdvectionCfg {

@@ -98,7 +98,7 @@ class TpetraPoisson final : public PoissonSolver {
         p.set("coarse: type", "RELAXATION"); // KLU2 fails on the singular operator
         auto& cp = p.sublist("coarse: params");
         cp.set("relaxation: type", "Symmetric Gauss-Seidel");
-        cp.set("relaxation: sweeps", cfg_.sweeps);
+        cp.set("relaxation: sweeps", cfg_.coarseSweeps);
         cp.set("relaxation: damping factor", cfg_.damping);
         if (cfg_.multigridReuse != "none") p.set("reuse: type", cfg_.multigridReuse);
         if (exact_) {

@@ -20,6 +20,7 @@ struct PoissonSettings {
   int multigridRefresh = 0;           // full multigrid rebuild every N coefficient updates (0: never)
   std::string multigridSmoother = "sgs"; // fine-level smoother: sgs | chebyshev
   int chebyshevDegree = 2;
+  int coarseSweeps = 10;                 // SGS sweeps on the coarsest multigrid level
 };
 
 } // namespace voigt

@@ -81,6 +81,7 @@ TEST(PoissonSettings, FromProjectionCfg) {
   EXPECT_EQ(fromDefault.multigridRefresh, d.multigridRefresh);
   EXPECT_EQ(fromDefault.multigridSmoother, d.multigridSmoother);
   EXPECT_EQ(fromDefault.chebyshevDegree, d.chebyshevDegree);
+  EXPECT_EQ(fromDefault.coarseSweeps, d.coarseSweeps);
 
   ProjectionCfg P;
   P.op = ProjectionCfg::Op::Approximate;
@@ -93,6 +94,7 @@ TEST(PoissonSettings, FromProjectionCfg) {
   P.multigridRefresh = 5;
   P.multigridSmoother = "chebyshev";
   P.chebyshevDegree = 4;
+  P.coarseSweeps = 7;
   const PoissonSettings s = poissonSettings(P);
   EXPECT_EQ(s.op, PoissonSettings::Op::Approximate);
   EXPECT_EQ(s.tolerance, 3e-7);
@@ -104,4 +106,5 @@ TEST(PoissonSettings, FromProjectionCfg) {
   EXPECT_EQ(s.multigridRefresh, 5);
   EXPECT_EQ(s.multigridSmoother, "chebyshev");
   EXPECT_EQ(s.chebyshevDegree, 4);
+  EXPECT_EQ(s.coarseSweeps, 7);
 }

@@ -152,6 +152,7 @@ PoissonSettings poissonSettings(const ProjectionCfg& P) {
   s.multigridRefresh = P.multigridRefresh;
   s.multigridSmoother = P.multigridSmoother;
   s.chebyshevDegree = P.chebyshevDegree;
+  s.coarseSweeps = P.coarseSweeps;
   return s;
 }
 
@@ -162,6 +163,7 @@ std::string solverSummary(const ProjectionCfg& P) {
     s += " (reuse " + P.multigridReuse + ", refresh " + std::to_string(P.multigridRefresh) + ", smoother " +
          P.multigridSmoother;
     if (P.multigridSmoother == "chebyshev") s += " degree " + std::to_string(P.chebyshevDegree);
+    s += ", coarse sweeps " + std::to_string(P.coarseSweeps);
     s += ")";
   } else if (P.preconditioner != "none") {
     s += " (" + std::to_string(P.sweeps) + " sweep" + (P.sweeps > 1 ? "s" : "") + ")";
