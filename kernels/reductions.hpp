@@ -84,4 +84,27 @@ inline double kineticEnergy(const Grid& g, const VecField& u, const Field& rhoCe
   return globalSum(g, e);
 }
 
+// Bounding box (local indices, [b, e)) of the first n listed cells; empty range if n == 0.
+inline Range3 listBox(const Grid& g, const IntList& cell, int n) {
+  Range3 box{{0, 0, 0}, {0, 0, 0}};
+  if (n == 0) return box;
+  const Unpack up{g.ext[0], g.ext[1]};
+  VOIGT_UNROLL
+  for (int d = 0; d < 3; ++d) {
+    Kokkos::MinMaxScalar<int> mm;
+    Kokkos::parallel_reduce(
+        "list_box", Kokkos::RangePolicy<ExecSpace>(0, n),
+        KOKKOS_LAMBDA(int p, Kokkos::MinMaxScalar<int>& v) {
+          int ijk[3];
+          up(cell(p), ijk[0], ijk[1], ijk[2]);
+          if (ijk[d] < v.min_val) v.min_val = ijk[d];
+          if (ijk[d] > v.max_val) v.max_val = ijk[d];
+        },
+        Kokkos::MinMax<int>(mm));
+    box.b[d] = mm.min_val;
+    box.e[d] = mm.max_val + 1;
+  }
+  return box;
+}
+
 } // namespace voigt

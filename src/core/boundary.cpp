@@ -181,18 +181,32 @@ void fillNodeGhostsEven(const Grid& g, const Field& f) {
 }
 
 void fillCellGhostsEven(const Grid& g, const Field& f) {
+  fillCellGhostsEven(g, f, Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}});
+}
+
+void fillCellGhostsEven(const Grid& g, const Field& f, const Range3& reads) {
   // Each ghost layer mirrors the owned cells: ghost first - m <- first + m - 1,
   // last + m <- last - m + 1, i.e. src = M - idx along d. One loop over the
-  // ghost slab (full extent across, so edges and corners follow the d order).
+  // ghost slab, across it only where `reads` lies (the whole extent by default,
+  // so edges and corners follow the d order; within `reads` the values are the
+  // same as those of the full fill, since the mirrors of its ghosts lie in it).
+  Range3 across;
+  VOIGT_UNROLL
+  for (int d = 0; d < 3; ++d) {
+    across.b[d] = reads.b[d] > 0 ? reads.b[d] : 0;
+    across.e[d] = reads.e[d] < g.ext[d] ? reads.e[d] : g.ext[d];
+    if (across.b[d] >= across.e[d]) return;
+  }
   VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) {
     VOIGT_UNROLL
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? !g.atLo(d) : !g.atHi(d)) continue;
       const int first = g.ng, last = g.ng + g.ln[d] - 1;
-      Range3 r{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};
+      Range3 r = across;
       r.b[d] = side == 0 ? first - g.ng : last + 1;
       r.e[d] = side == 0 ? first : last + 1 + g.ng;
+      if (side == 0 ? across.b[d] >= first : across.e[d] <= last + 1) continue; // no ghost of this side read
       const int M = side == 0 ? 2 * first - 1 : 2 * last + 1;
       for_each3("cell_ghosts", r, KOKKOS_LAMBDA(int i, int j, int k) {
             f(i, j, k) = f(d == 0 ? M - i : i, d == 1 ? M - j : j, d == 2 ? M - k : k);

@@ -34,5 +34,7 @@ void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u);
 void fillNodeGhostsEven(const Grid& g, const Field& f);
 // Ghost cells beyond physical faces by even reflection (zero normal gradient).
 void fillCellGhostsEven(const Grid& g, const Field& f);
+// The same, only where the cells in `reads` (local indices, ghosts included) need it.
+void fillCellGhostsEven(const Grid& g, const Field& f, const Range3& reads);
 
 } // namespace voigt

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/boundary.hpp"
+#include "kernels/reductions.hpp"
 
 namespace voigt {
 
@@ -30,9 +31,10 @@ Reinitializer::Reinitializer(const Grid& g, ReinitParams p) : g_(&g), p_(p) {
   band_.coef = reinit::RealList("reinit_coef", cap);
 }
 
-void Reinitializer::refresh(Halo& halo, const Field& f) const {
+void Reinitializer::refresh(Halo& halo, const Field& f, const Range3* reads) const {
   halo.exchange(f);
-  fillCellGhostsEven(*g_, f);
+  if (reads) fillCellGhostsEven(*g_, f, *reads);
+  else fillCellGhostsEven(*g_, f);
 }
 
 ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
@@ -55,19 +57,26 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
   }
   prepareBand(g, band_, n, psi, dH_, gm_, p_.band, con);
 
+  // Inside the loop the kernels read the band cells and 2 layers around them:
+  // the wall ghosts are filled there only; the last refresh of psi is whole.
+  Range3 reads = listBox(g, band_.cell, n);
+  for (int d = 0; d < 3; ++d) {
+    reads.b[d] -= 2;
+    reads.e[d] += 2;
+  }
   for (int m = 0; m < p_.iterations; ++m) {
     // psi (= psi^m) is fresh here.
     eikonalStage(g, band_, n, psi, psi, psi1_, 0.0, dtau, p_.subcellFix);
-    refresh(halo, psi1_);
+    refresh(halo, psi1_, &reads);
     if (!con) {
       eikonalStage(g, band_, n, psi1_, psi, psi, 0.5, dtau, p_.subcellFix);
     } else {
       eikonalStage(g, band_, n, psi1_, psi, psiT_, 0.5, dtau, p_.subcellFix);
-      refresh(halo, psiT_);
+      refresh(halo, psiT_, &reads);
       applyConstraint(g, band_, n, psiT_, psi, dH_, psi1_); // psi1 is free again
       copyBand(g, band_, n, psi1_, psi);
     }
-    refresh(halo, psi);
+    refresh(halo, psi, m + 1 < p_.iterations ? &reads : nullptr);
   }
 
   ReinitStats st;

@@ -46,7 +46,8 @@ class Reinitializer {
   const ReinitParams& params() const { return p_; }
 
  private:
-  void refresh(Halo& halo, const Field& f) const;
+  // Halo exchange and wall ghosts; with `reads`, wall ghosts only where those cells lie.
+  void refresh(Halo& halo, const Field& f, const Range3* reads = nullptr) const;
 
   const Grid* g_;
   ReinitParams p_;

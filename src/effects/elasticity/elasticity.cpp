@@ -83,10 +83,13 @@ void Elasticity::declareFields(FieldStore& f) const {
 
 void Elasticity::refreshStress(State& st) const { refresh(st, solidStressField(st.fields)); }
 
-void Elasticity::refresh(State& st, const SymTensorField& t) const {
+void Elasticity::refresh(State& st, const SymTensorField& t, const Range3* reads) const {
   st.halo->exchange(std::vector<Field>(t.c, t.c + 6));
   VOIGT_UNROLL
-  for (int c = 0; c < 6; ++c) fillCellGhostsEven(st.grid, t.c[c]);
+  for (int c = 0; c < 6; ++c) {
+    if (reads) fillCellGhostsEven(st.grid, t.c[c], *reads);
+    else fillCellGhostsEven(st.grid, t.c[c]);
+  }
 }
 
 void Elasticity::setup(State& st) {

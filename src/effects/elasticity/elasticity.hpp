@@ -88,7 +88,8 @@ class Elasticity : public Effect {
  private:
   void buildLists(State& st);
   void refreshStress(State& st) const;
-  void refresh(State& st, const SymTensorField& t) const;
+  // Halo exchange and wall ghosts; with `reads`, wall ghosts only where those cells lie.
+  void refresh(State& st, const SymTensorField& t, const Range3* reads = nullptr) const;
   void extend(State& st);
 
   const Scene* scene_ = nullptr;
