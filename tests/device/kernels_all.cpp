@@ -6,6 +6,7 @@
 //   voigt_kernels_all [--out FILE]                 print (and write) "name value" lines
 //   voigt_kernels_all --compare REF [--rtol R]     also compare with REF (default 1e-9):
 //                                                  a GPU run against the Serial reference
+//   --config                                       print Kokkos's configuration first
 // The launcher list is checked at configure time (tests/device/launchers.cmake): a new
 // `inline` function in kernels/ must be called here.
 #include <Kokkos_Core.hpp>
@@ -16,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <string>
 #include <utility>
@@ -276,6 +278,8 @@ int main(int argc, char** argv) {
     Kokkos::ScopeGuard kokkos(argc, argv);
     std::string out, ref;
     double rtol = 1e-9;
+    for (int a = 1; a < argc; ++a)
+      if (!std::strcmp(argv[a], "--config")) Kokkos::print_configuration(std::cout, true);
     for (int a = 1; a + 1 < argc; ++a) {
       if (!std::strcmp(argv[a], "--out")) out = argv[++a];
       else if (!std::strcmp(argv[a], "--compare")) ref = argv[++a];
