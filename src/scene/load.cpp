@@ -256,6 +256,7 @@ void readSettings(const Section& top, Scene& sc) {
   P.sweeps = int(p.integer("sweeps", P.sweeps, 1, 100));
   P.multigridReuse = p.choice("multigrid_reuse", P.multigridReuse, {"none", "S", "tP", "RP", "RAP"});
   P.multigridRefresh = int(p.integer("multigrid_refresh", P.multigridRefresh, 0, 1000000));
+  P.multigridRebuildGrowth = p.number("multigrid_rebuild_growth", P.multigridRebuildGrowth, Range::nonNegative());
   P.multigridSmoother = p.choice("multigrid_smoother", P.multigridSmoother, {"sgs", "chebyshev"});
   P.chebyshevDegree = int(p.integer("chebyshev_degree", P.chebyshevDegree, 1, 20));
   P.coarseSweeps = int(p.integer("multigrid_coarse_sweeps", P.coarseSweeps, 1, 1000));

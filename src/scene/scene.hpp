@@ -67,6 +67,10 @@ struct ProjectionCfg {
   // Multigrid with reuse: a full rebuild every N coefficient updates (0: only when the
   // zero pattern changes). Useful with RAP, whose iterations grow as the density moves.
   int multigridRefresh = 0;
+  // Multigrid with reuse: a full rebuild also when a solve takes more than (1 + growth)
+  // times the iterations of the first solve after the last build, plus one (0: off). The
+  // kept coarse levels age as the density moves; the iterations say when (perf/README.md).
+  double multigridRebuildGrowth = 0.25;
   // Multigrid only: the fine-level smoother. sgs: MueLu's default relaxation (symmetric
   // Gauss-Seidel, sequential sweeps); chebyshev: Ifpack2 Chebyshev of this degree (matrix-
   // vector products only: runs on threads and GPUs; perf/README.md compares the two).

@@ -91,7 +91,7 @@ class TpetraPoisson final : public PoissonSolver {
       // Reused set-up (projection.multigrid_reuse) was built for the old zero pattern,
       // whose identity rows and null space it may encode: rebuild when that changes, and
       // every multigrid_refresh updates.
-      const bool refresh = cfg_.multigridRefresh > 0 && sinceBuild_ + 1 >= cfg_.multigridRefresh;
+      const bool refresh = (cfg_.multigridRefresh > 0 && sinceBuild_ + 1 >= cfg_.multigridRefresh) || rebuildDue_;
       if (muelu_.is_null() || (cfg_.multigridReuse != "none" && (patternChanged || refresh))) {
         Teuchos::ParameterList p;
         p.set("verbosity", "none");
@@ -118,6 +118,8 @@ class TpetraPoisson final : public PoissonSolver {
         muelu_ = MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Operator>(A_), p);
         problem_->setLeftPrec(Teuchos::rcp(new ProjectedPrec(muelu_, ns_.get())));
         sinceBuild_ = 0;
+        baseIts_ = -1;
+        rebuildDue_ = false;
       } else {
         MueLu::ReuseTpetraPreconditioner(A_, *muelu_);
         ++sinceBuild_;
@@ -178,6 +180,12 @@ class TpetraPoisson final : public PoissonSolver {
         st.relResidual = rn / bn;
       }
       st.converged = st.breakdowns ? st.relResidual <= 10 * cfg_.tolerance : belosConverged;
+      // Aged reused multigrid levels (projection.multigrid_rebuild_growth): the first solve
+      // after a full build sets the base; a solve that needs clearly more asks for a rebuild.
+      if (!muelu_.is_null() && cfg_.multigridReuse != "none" && cfg_.multigridRebuildGrowth > 0) {
+        if (baseIts_ < 0) baseIts_ = st.iterations;
+        else if (st.iterations > baseIts_ * (1 + cfg_.multigridRebuildGrowth) + 1) rebuildDue_ = true;
+      }
     }
     vecToField(*x_, x, rows_, cells_);
     st.seconds = MPI_Wtime() - t0;
@@ -366,6 +374,8 @@ class TpetraPoisson final : public PoissonSolver {
   Teuchos::RCP<MueLu::TpetraOperator<Scalar, LO, GO, Node>> muelu_;
   Teuchos::RCP<Problem> problem_;
   Teuchos::RCP<Solver> solver_;
+  int baseIts_ = -1;          // iterations of the first solve after the last full build
+  bool rebuildDue_ = false;   // a solve took clearly more: rebuild at the next update
   int sinceBuild_ = 0;        // ReuseTpetraPreconditioner calls since the last full multigrid build
   double pendingSetup_ = 0;   // setCoefficients() seconds not yet reported by solve()
 };

@@ -18,6 +18,7 @@ struct PoissonSettings {
   int sweeps = 1;                     // relaxation sweeps (also MueLu's smoother)
   std::string multigridReuse = "tP";  // MueLu "reuse: type": none | S | tP | RP | RAP
   int multigridRefresh = 0;           // full multigrid rebuild every N coefficient updates (0: never)
+  double multigridRebuildGrowth = 0.25; // ... and when the iterations grow by this fraction (0: never)
   std::string multigridSmoother = "sgs"; // fine-level smoother: sgs | chebyshev
   int chebyshevDegree = 2;
   int coarseSweeps = 10;                 // SGS sweeps on the coarsest multigrid level

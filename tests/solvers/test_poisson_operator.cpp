@@ -82,6 +82,7 @@ TEST(PoissonSettings, FromProjectionCfg) {
   EXPECT_EQ(fromDefault.multigridSmoother, d.multigridSmoother);
   EXPECT_EQ(fromDefault.chebyshevDegree, d.chebyshevDegree);
   EXPECT_EQ(fromDefault.coarseSweeps, d.coarseSweeps);
+  EXPECT_EQ(fromDefault.multigridRebuildGrowth, d.multigridRebuildGrowth);
 
   ProjectionCfg P;
   P.op = ProjectionCfg::Op::Approximate;
@@ -95,6 +96,7 @@ TEST(PoissonSettings, FromProjectionCfg) {
   P.multigridSmoother = "chebyshev";
   P.chebyshevDegree = 4;
   P.coarseSweeps = 7;
+  P.multigridRebuildGrowth = 0.5;
   const PoissonSettings s = poissonSettings(P);
   EXPECT_EQ(s.op, PoissonSettings::Op::Approximate);
   EXPECT_EQ(s.tolerance, 3e-7);
@@ -107,4 +109,5 @@ TEST(PoissonSettings, FromProjectionCfg) {
   EXPECT_EQ(s.multigridSmoother, "chebyshev");
   EXPECT_EQ(s.chebyshevDegree, 4);
   EXPECT_EQ(s.coarseSweeps, 7);
+  EXPECT_EQ(s.multigridRebuildGrowth, 0.5);
 }

@@ -150,6 +150,7 @@ PoissonSettings poissonSettings(const ProjectionCfg& P) {
   s.sweeps = P.sweeps;
   s.multigridReuse = P.multigridReuse;
   s.multigridRefresh = P.multigridRefresh;
+  s.multigridRebuildGrowth = P.multigridRebuildGrowth;
   s.multigridSmoother = P.multigridSmoother;
   s.chebyshevDegree = P.chebyshevDegree;
   s.coarseSweeps = P.coarseSweeps;
@@ -160,8 +161,10 @@ PoissonSettings poissonSettings(const ProjectionCfg& P) {
 std::string solverSummary(const ProjectionCfg& P) {
   std::string s = P.preconditioner;
   if (P.preconditioner == "multigrid") {
-    s += " (reuse " + P.multigridReuse + ", refresh " + std::to_string(P.multigridRefresh) + ", smoother " +
-         P.multigridSmoother;
+    char growth[32];
+    std::snprintf(growth, sizeof growth, "%g", P.multigridRebuildGrowth);
+    s += " (reuse " + P.multigridReuse + ", refresh " + std::to_string(P.multigridRefresh) + ", rebuild growth " +
+         growth + ", smoother " + P.multigridSmoother;
     if (P.multigridSmoother == "chebyshev") s += " degree " + std::to_string(P.chebyshevDegree);
     s += ", coarse sweeps " + std::to_string(P.coarseSweeps);
     s += ")";
