@@ -54,6 +54,15 @@ inline void for_each3(const char* name, const Range3& r, const F& f) {
       });
 }
 
+// r grown by n layers on every side.
+inline Range3 grown(Range3 r, int n) {
+  for (int d = 0; d < 3; ++d) {
+    r.b[d] -= n;
+    r.e[d] += n;
+  }
+  return r;
+}
+
 // Owned cells grown by `grow` layers into the ghosts.
 inline Range3 cellRange(const Grid& g, int grow = 0) {
   Range3 r;

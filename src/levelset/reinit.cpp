@@ -59,11 +59,7 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
 
   // Inside the loop the kernels read the band cells and 2 layers around them:
   // the wall ghosts are filled there only; the last refresh of psi is whole.
-  Range3 reads = listBox(g, band_.cell, n);
-  for (int d = 0; d < 3; ++d) {
-    reads.b[d] -= 2;
-    reads.e[d] += 2;
-  }
+  const Range3 reads = grown(listBox(g, band_.cell, n), 2);
   for (int m = 0; m < p_.iterations; ++m) {
     // psi (= psi^m) is fresh here.
     eikonalStage(g, band_, n, psi, psi, psi1_, 0.0, dtau, p_.subcellFix);

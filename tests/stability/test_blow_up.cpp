@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "io/checkpoint.hpp"
 #include "stability/support.hpp"
@@ -15,19 +16,31 @@ using namespace voigt;
 using namespace voigt::test;
 namespace fs = std::filesystem;
 
-TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
-  TempDir tmp;
-  // A fixed dt 100 times the stable one: the velocity overflows within a few steps.
-  const Scene s = caseScene("taylor_green/taylor_green.yaml",
-                            {"domain.cells=[16,16,4]", "time.dt=5", "time.end=1e6", "output.enabled=false",
-                             "projection.max_iterations=50", "checkpoint.last_good_interval=1"});
-  Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 500));
-  std::string msg;
+namespace {
+// A fixed dt 100 times the stable one: the velocity overflows within a few steps.
+Scene blowUpScene(int lastGoodInterval) {
+  return caseScene("taylor_green/taylor_green.yaml",
+                   {"domain.cells=[16,16,4]", "time.dt=5", "time.end=1e6", "output.enabled=false",
+                    "projection.max_iterations=50",
+                    "checkpoint.last_good_interval=" + std::to_string(lastGoodInterval)});
+}
+
+// The BlowUp message of sim.run(), empty if it ran to the end.
+std::string runToBlowUp(Simulation& sim) {
   try {
     sim.run();
   } catch (const BlowUp& e) {
-    msg = e.what();
+    return e.what();
   }
+  return "";
+}
+} // namespace
+
+TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
+  TempDir tmp;
+  const Scene s = blowUpScene(1);
+  Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 500));
+  const std::string msg = runToBlowUp(sim);
   ASSERT_FALSE(msg.empty()) << "no blow-up detected";
   const long badStep = sim.state().step;
   EXPECT_NE(msg.find("field 'velocity' component x = "), std::string::npos) << msg;
@@ -71,16 +84,9 @@ TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
 // that is a multiple of 3 before the blow-up (the copy is refreshed every 3 steps).
 TEST(BlowUp, LastGoodIntervalKeepsAnEarlierState) {
   TempDir tmp;
-  const Scene s = caseScene("taylor_green/taylor_green.yaml",
-                            {"domain.cells=[16,16,4]", "time.dt=5", "time.end=1e6", "output.enabled=false",
-                             "projection.max_iterations=50", "checkpoint.last_good_interval=3"});
+  const Scene s = blowUpScene(3);
   Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 500));
-  std::string msg;
-  try {
-    sim.run();
-  } catch (const BlowUp& e) {
-    msg = e.what();
-  }
+  const std::string msg = runToBlowUp(sim);
   ASSERT_FALSE(msg.empty()) << "no blow-up detected";
   const long kept = (sim.state().step - 1) / 3 * 3;
   char last[64];

@@ -84,11 +84,7 @@ void Elasticity::extend(State& st) {
   // Only the fluid-side cells change; both buffers hold the others' values.
   const int nSide = extension::fluidSide(psi, st.grid, owned_, nOwned_, below_, side_cells_);
   extension::copySolidSide(st.grid, psi, t, b, owned_, nOwned_, below_);
-  Range3 reads = elastic::listBox(st.grid, owned_, nOwned_); // the sweeps read the band box and 1 layer
-  for (int d = 0; d < 3; ++d) {
-    reads.b[d] -= 1;
-    reads.e[d] += 1;
-  }
+  const Range3 reads = grown(elastic::listBox(st.grid, owned_, nOwned_), 1); // the sweeps read the band box and 1 layer
   for (int s = 0; s < sweeps_; ++s) {
     const SymTensorField& from = s % 2 == 0 ? t : b;
     const SymTensorField& to = s % 2 == 0 ? b : t;
