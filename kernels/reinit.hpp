@@ -138,21 +138,18 @@ inline void gradMagField(const Grid& g, const Field& psi0, const Field& dH, cons
 inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& psi0, const Field& dH,
                         const Field& gm, double band, bool constraint) {
   if (constraint) gradMagField(g, psi0, dH, gm);
-  const Unpack up{g.ext[0], g.ext[1]};
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   const double hs = std::min({h0, h1, h2});
+  const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
+  const FlatField ps = flat(psi0), fd = flat(dH), fg = flat(gm);
   Kokkos::parallel_for(
       "reinit_prepare", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        int i, j, k;
-        up(b.cell(q), i, j, k);
-        const double p0 = psi0(i, j, k);
+        const int p = b.cell(q);
+        const double p0 = ps(p);
         b.sgn(q) = p0 / std::sqrt(p0 * p0 + hs * hs);
-        const double nb[3][2] = {{psi0(i - 1, j, k), psi0(i + 1, j, k)},
-                                 {psi0(i, j - 1, k), psi0(i, j + 1, k)},
-                                 {psi0(i, j, k - 1), psi0(i, j, k + 1)}};
-        const double far[3][2] = {{psi0(i - 2, j, k), psi0(i + 2, j, k)},
-                                  {psi0(i, j - 2, k), psi0(i, j + 2, k)},
-                                  {psi0(i, j, k - 2), psi0(i, j, k + 2)}};
+        const double nb[3][2] = {{ps(p - 1), ps(p + 1)}, {ps(p - sj), ps(p + sj)}, {ps(p - sk), ps(p + sk)}};
+        const double far[3][2] = {
+            {ps(p - 2), ps(p + 2)}, {ps(p - 2 * sj), ps(p + 2 * sj)}, {ps(p - 2 * sk), ps(p + 2 * sk)}};
         const double hd[3] = {h0, h1, h2};
         bool iface = false, inside = true;
         int eno = 0;
@@ -173,16 +170,17 @@ inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& p
         const double D = g2 > 0 ? p0 / std::sqrt(g2) : p0;
         b.dist(q) = std::fmax(-band, std::fmin(band, D));
         double coef = 0;
-        if (constraint && dH(i, j, k) > 0) {
+        if (constraint && fd(p) > 0) {
           const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
           double den = 0;
           for (int c = -1; c <= 1; ++c)
             for (int bb = -1; bb <= 1; ++bb)
               for (int a = -1; a <= 1; ++a) {
-                const double dn = dH(i + a, j + bb, k + c);
-                if (dn > 0) den += w[a + 1] * w[bb + 1] * w[c + 1] * dn * dn * gm(i + a, j + bb, k + c);
+                const int o = p + a + bb * sj + c * sk;
+                const double dn = fd(o);
+                if (dn > 0) den += w[a + 1] * w[bb + 1] * w[c + 1] * dn * dn * fg(o);
               }
-          const double f = dH(i, j, k) * gm(i, j, k);
+          const double f = fd(p) * fg(p);
           // den >= w_c^3 H'_c f_c, so den ~ 0 only where f_c ~ 0 too: lambda = 0 there.
           coef = den > 1e-300 ? f / den : 0.0;
         }
@@ -195,29 +193,29 @@ inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& p
 // itself, so out may alias base (not in).
 inline void eikonalStage(const Grid& g, const BandViews& b, int n, const Field& in, const Field& base,
                          const Field& out, double alpha, double dtau, bool subcell) {
-  const Unpack up{g.ext[0], g.ext[1]};
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   const double hmin = std::min({h0, h1, h2});
+  const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
+  const FlatField fi = flat(in), fb = flat(base), fo = flat(out);
   Kokkos::parallel_for(
       "reinit_stage", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        int i, j, k;
-        up(b.cell(q), i, j, k);
-        const double p0 = in(i, j, k), s = b.sgn(q);
+        const int p = b.cell(q);
+        const double p0 = fi(p), s = b.sgn(q);
         double rate;
         if (subcell && (b.flags(q) & kInterface)) {
           rate = (b.dist(q) - p0) / hmin; // Russo-Smereka, in the form that relaxes for either sign
         } else {
           const int fl = b.flags(q);
           double dm, dp, g2 = 0;
-          eno2(in(i - 2, j, k), in(i - 1, j, k), p0, in(i + 1, j, k), in(i + 2, j, k), h0, fl & kEno, dm, dp);
+          eno2(fi(p - 2), fi(p - 1), p0, fi(p + 1), fi(p + 2), h0, fl & kEno, dm, dp);
           g2 += godunov2(s, dm, dp);
-          eno2(in(i, j - 2, k), in(i, j - 1, k), p0, in(i, j + 1, k), in(i, j + 2, k), h1, fl & (kEno << 1), dm, dp);
+          eno2(fi(p - 2 * sj), fi(p - sj), p0, fi(p + sj), fi(p + 2 * sj), h1, fl & (kEno << 1), dm, dp);
           g2 += godunov2(s, dm, dp);
-          eno2(in(i, j, k - 2), in(i, j, k - 1), p0, in(i, j, k + 1), in(i, j, k + 2), h2, fl & (kEno << 2), dm, dp);
+          eno2(fi(p - 2 * sk), fi(p - sk), p0, fi(p + sk), fi(p + 2 * sk), h2, fl & (kEno << 2), dm, dp);
           g2 += godunov2(s, dm, dp);
           rate = s * (1 - std::sqrt(g2));
         }
-        out(i, j, k) = alpha * base(i, j, k) + (1 - alpha) * (p0 + dtau * rate);
+        fo(p) = alpha * fb(p) + (1 - alpha) * (p0 + dtau * rate);
       });
 }
 
@@ -225,35 +223,36 @@ inline void eikonalStage(const Grid& g, const BandViews& b, int n, const Field& 
 // psiT (psi~) and psiM (psi^m) need 1 fresh ghost layer; out must alias neither.
 inline void applyConstraint(const Grid& g, const BandViews& b, int n, const Field& psiT, const Field& psiM,
                             const Field& dH, const Field& out) {
-  const Unpack up{g.ext[0], g.ext[1]};
+  const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
+  const FlatField ft = flat(psiT), fm = flat(psiM), fd = flat(dH), fo = flat(out);
   Kokkos::parallel_for(
       "reinit_constraint", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        int i, j, k;
-        up(b.cell(q), i, j, k);
+        const int p = b.cell(q);
         const double coef = b.coef(q);
         double num = 0;
         if (coef != 0) {
           const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
+          VOIGT_UNROLL
           for (int c = -1; c <= 1; ++c)
+            VOIGT_UNROLL
             for (int bb = -1; bb <= 1; ++bb)
+              VOIGT_UNROLL
               for (int a = -1; a <= 1; ++a) {
-                const double dn = dH(i + a, j + bb, k + c);
-                if (dn > 0)
-                  num += w[a + 1] * w[bb + 1] * w[c + 1] * dn *
-                         (psiT(i + a, j + bb, k + c) - psiM(i + a, j + bb, k + c));
+                const int o = p + a + bb * sj + c * sk;
+                const double dn = fd(o);
+                if (dn > 0) num += w[a + 1] * w[bb + 1] * w[c + 1] * dn * (ft(o) - fm(o));
               }
         }
-        out(i, j, k) = psiT(i, j, k) - coef * num;
+        fo(p) = ft(p) - coef * num;
       });
 }
 
 inline void copyBand(const Grid& g, const BandViews& b, int n, const Field& src, const Field& dst) {
-  const Unpack up{g.ext[0], g.ext[1]};
+  const FlatField fs = flat(src), fd = flat(dst);
   Kokkos::parallel_for(
       "reinit_copy", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        int i, j, k;
-        up(b.cell(q), i, j, k);
-        dst(i, j, k) = src(i, j, k);
+        const int p = b.cell(q);
+        fd(p) = fs(p);
       });
 }
 

@@ -23,6 +23,7 @@
 #include "kernels/elastic.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/projection_ops.hpp"
+#include "kernels/extension.hpp"
 #include "kernels/reinit.hpp"
 #include "kernels/stress.hpp"
 #ifndef VOIGT_NO_TPETRA
@@ -59,6 +60,8 @@ struct Fixture {
   SymTensorField tau, tauS;
   IntList owned, grown; // elastic band (psi > -(kappa + 3 h)): owned cells, one ghost layer more
   int nOwned = 0, nGrown = 0;
+  IntList side; // the band's fluid side (psi <= 0): the cells the stress extension sweeps
+  int nSide = 0;
   reinit::BandViews band; // reinit band |psi| < 6 h
   int nBand = 0;
   double h = 0;
@@ -87,6 +90,8 @@ struct Fixture {
     owned = IntList("owned", cap), grown = IntList("grown", capG);
     nOwned = elastic::buildActiveList(g, psi, -5 * h, cellRange(g), owned);
     nGrown = elastic::buildActiveList(g, psi, -5 * h, cellRange(g, 1), grown);
+    side = IntList("side", cap);
+    nSide = extension::fluidSide(psi, g, owned, nOwned, 0.0, side);
     band.cell = IntList("band", cap), band.flags = IntList("flags", cap);
     band.sgn = reinit::RealList("sgn", cap), band.dist = reinit::RealList("dist", cap);
     band.coef = reinit::RealList("coef", cap);
@@ -233,6 +238,13 @@ void BM_ElasticStressAdvectionPointwise(benchmark::State& s) {
   });
   report(s, 21 * 8, double(box.size()));
 }
+// One Jacobi sweep of the stress extension (kernels/extension.hpp) over the band's
+// fluid side: list (4 B), psi, tau_S (6) read, tau (6) written; neighbours from cache.
+void BM_ExtensionSweep(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { extension::sweep(f.g, f.psi, f.tauS, f.tau, f.side, f.nSide, 0.0); });
+  report(s, 13 * 8 + 4, f.nSide);
+}
 // --- reinit (band |psi| < 6 h around the sphere) ---
 // One Eikonal RK stage: list, flags (4 B each), sgn, in, base, out (8 B each).
 void BM_ReinitStage(benchmark::State& s) {
@@ -341,6 +353,7 @@ void registerAll(bool wall) {
   add("ElasticAddStress", BM_ElasticAddStress);
   add("ElasticStressAdvection", BM_ElasticStressAdvection);
   add("ElasticStressAdvectionPointwise", BM_ElasticStressAdvectionPointwise);
+  add("ExtensionSweep", BM_ExtensionSweep);
   add("ReinitStage", BM_ReinitStage);
   add("ReinitIteration", BM_ReinitIteration);
   add("Divergence", BM_Divergence);

@@ -4,6 +4,8 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 namespace voigt {
@@ -95,5 +97,17 @@ struct Unpack {
     k = t / e1;
   }
 };
+
+// The same memory as a 1-D view: f(i, j, k) = flat(f)(i + e0 (j + e1 k)), the packed
+// index itself. Band kernels over packed lists address a cell and its neighbours by
+// fixed offsets (+-1, +-e0, +-e0 e1) instead of unpacking i, j, k (two integer
+// divisions) and rebuilding each neighbour's index. Fields are unpadded LayoutLeft
+// views over Grid::ext (FieldStore::allocate); flat() checks it.
+using FlatField = Kokkos::View<double*, MemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+inline FlatField flat(const Field& f) {
+  if (f.stride(0) != 1 || f.stride(1) != f.extent(0) || f.stride(2) != f.extent(0) * f.extent(1))
+    throw std::logic_error("flat(): field '" + f.label() + "' is padded");
+  return FlatField(f.data(), f.size());
+}
 
 } // namespace voigt
