@@ -72,9 +72,11 @@ KOKKOS_FORCEINLINE_FUNCTION void momentumSum(const Kokkos::View<double****, Kokk
 } // namespace faces
 
 // Conservative momentum advection, as addMomentumAdvection (advection.hpp).
+// assign: rhs = the tendency, as += onto a zeroed rhs would give (0 + x, bit for bit),
+// without the zeroing pass and the read of rhs.
 inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const VecField& v, const Field& rhoRef,
                                       const Field& rhsRho, const VecField& rhs, Range3 nodes, Limiter limiter,
-                                      FluxScratch& scratch) {
+                                      FluxScratch& scratch, bool assign = false) {
   scratch.reserve(g, 15);
   auto F = scratch.F;
   auto vx = v.c[0], vy = v.c[1], vz = v.c[2];
@@ -95,9 +97,9 @@ inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const Vec
         faces::momentumSum<2>(F, i, j, k, r0, u0, u1, u2, ih2, tr, tm);
         rhsRho(i, j, k) = tr;
         const double inv = 1 / rhoRef(i, j, k);
-        rx(i, j, k) += tm[0] * inv;
-        ry(i, j, k) += tm[1] * inv;
-        rz(i, j, k) += tm[2] * inv;
+        rx(i, j, k) = (assign ? 0.0 : rx(i, j, k)) + tm[0] * inv;
+        ry(i, j, k) = (assign ? 0.0 : ry(i, j, k)) + tm[1] * inv;
+        rz(i, j, k) = (assign ? 0.0 : rz(i, j, k)) + tm[2] * inv;
       });
 }
 
@@ -131,7 +133,7 @@ KOKKOS_FORCEINLINE_FUNCTION void scalarSum(const Kokkos::View<double****, Kokkos
 } // namespace faces
 
 inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField& v, const Field& rhs, Range3 nodes,
-                                  Limiter limiter, FluxScratch& scratch) {
+                                  Limiter limiter, FluxScratch& scratch, bool assign = false) {
   scratch.reserve(g, 6);
   auto F = scratch.F;
   withLimiter(limiter, [&](auto L) {
@@ -147,14 +149,14 @@ inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField&
         faces::scalarSum<0>(F, i, j, k, q0, h0, tend);
         faces::scalarSum<1>(F, i, j, k, q0, h1, tend);
         faces::scalarSum<2>(F, i, j, k, q0, h2, tend);
-        rhs(i, j, k) += tend;
+        rhs(i, j, k) = (assign ? 0.0 : rhs(i, j, k)) + tend; // assign: as addMomentumAdvectionFaces
       });
 }
 
 inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const VecField& rhs, Range3 nodes,
-                                      Limiter limiter, FluxScratch& scratch) {
+                                      Limiter limiter, FluxScratch& scratch, bool assign = false) {
   VOIGT_UNROLL
-  for (int c = 0; c < 3; ++c) addNodeAdvectionFaces(g, v.c[c], v, rhs.c[c], nodes, limiter, scratch);
+  for (int c = 0; c < 3; ++c) addNodeAdvectionFaces(g, v.c[c], v, rhs.c[c], nodes, limiter, scratch, assign);
 }
 
 // One cell field advected by the node velocity (addCellAdvection of

@@ -29,6 +29,7 @@
 #include "kernels/extension.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/levelset.hpp"
+#include "kernels/momentum.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
 #include "kernels/reinit.hpp"
@@ -185,6 +186,34 @@ void projectionStressReductions(const Grid& g, Fields& f) {
   put("kineticEnergy", kineticEnergy(g, f.u, f.rho));
 }
 
+// The momentum predictor's stage updates (kernels/momentum.hpp): at three nodes of
+// four one component is prescribed (the mask bit cycles with i + j + k). Runs last:
+// it overwrites u2, rhs and div.
+void momentum(const Grid& g, Fields& f) {
+  const Range3 nodes = nodeRange(g), cells = cellRange(g);
+  const IntField mask("mask", g.ext[0], g.ext[1], g.ext[2]);
+  Kokkos::parallel_for(
+      "check_mask", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = 1 << ((i + j + k) % 4); });
+  const VecField u0{mk(g, "u0x"), mk(g, "u0y"), mk(g, "u0z")};
+  const Field r0 = mk(g, "r0"), r1 = mk(g, "r1");
+  nodeDensity(g, f.rho, r0, nodes);
+  put("nodeDensity", sumAbs(r0, nodes));
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.u2.c[c], f.u.c[c]);
+  momentumStage1(f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage1", sumAbs(f.u2, nodes) + sumAbs(u0, nodes));
+  momentumStage2(f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage2", sumAbs(f.u2, nodes));
+  momentumStage1Conservative(r0, f.q, r1, f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage1Conservative", sumAbs(f.u2, nodes) + sumAbs(r1, nodes));
+  momentumStage2Conservative(r0, r1, f.q, f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage2Conservative", sumAbs(f.u2, nodes));
+  initialVelocityRate(f.u2, f.u, f.q, r0, true, mask, nodes);
+  put("initialVelocityRate", sumAbs(f.u2, nodes));
+  negate(f.p, f.div, cells);
+  addTo(f.q, f.div, cells); // div = q - p
+  put("negate+addTo", sumAbs(f.div, cells));
+}
+
 void elasticity(const Grid& g, Fields& f) {
   const double h = g.h[0];
   const IntList owned("owned", size_t(g.cellsOwned())), grown("grown", size_t(cellRange(g, 1).size()));
@@ -302,6 +331,7 @@ int main(int argc, char** argv) {
       projectionStressReductions(g, f);
       elasticity(g, f);
       reinitialisation(g, f);
+      momentum(g, f);
     }
     freeGrid(g);
     std::printf("voigt_kernels_all: Kokkos %s, %zu checksums\n", Kokkos::DefaultExecutionSpace::name(), gSums.size());

@@ -15,6 +15,7 @@
 
 #include "core/boundary.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
+#include "kernels/momentum.hpp"
 
 namespace voigt {
 
@@ -29,13 +30,12 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
   const Grid& g = st.grid;
   const Range3 nodes = nodeRange(g);
   refreshGhosts(st, u);
-  VOIGT_UNROLL
-  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs.c[c], 0.0);
+  // The advection assigns rhs (no zeroing pass); the Stress stage writes tau only.
   if (rho)
     addMomentumAdvectionFaces(g, *rho, u, st.fields.scalar("momentum_density"),
-                              st.fields.scalar("momentum_density_rhs"), rhs, nodes, limiter_, flux_);
+                              st.fields.scalar("momentum_density_rhs"), rhs, nodes, limiter_, flux_, true);
   else
-    addVelocityAdvectionFaces(g, u, rhs, nodes, limiter_, flux_);
+    addVelocityAdvectionFaces(g, u, rhs, nodes, limiter_, flux_, true);
   st.evalU = u;
   st.evalRhs = rhs;
   p.run(Stage::Stress, st);
@@ -49,9 +49,8 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
 // projection's 1/rho), ghosts included for the MUSCL stencil.
 void NavierStokes::nodeDensity(State& st) {
   const Grid& g = st.grid;
-  GridGeom G(g);
   Field rho = st.fields.scalar("density"), r0 = st.fields.scalar("momentum_density");
-  for_each3("node_density", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) { r0(i, j, k) = G.nodeMean(rho, i, j, k); });
+  voigt::nodeDensity(g, rho, r0, nodeRange(g));
   st.halo->exchange(r0);
   fillNodeGhostsEven(g, r0);
 }
@@ -66,30 +65,23 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   IntField mask = st.fields.integer("fix_mask");
   Field pr = st.fields.scalar("pressure"), dp = st.fields.scalar("pressure_increment");
   Field rhs = st.fields.scalar("poisson_rhs"), div = st.fields.scalar("divergence");
+  // Declared only with the conservative form.
+  const Field r0 = conservative_ ? st.fields.scalar("momentum_density") : Field();
+  const Field rr = conservative_ ? st.fields.scalar("momentum_density_rhs") : Field();
   if (conservative_) { // du/dt = (dm/dt - u dr/dt) / r0
     nodeDensity(st);
-    Field r0 = st.fields.scalar("momentum_density"), rr = st.fields.scalar("momentum_density_rhs");
     evaluateRhs(st, p, u, acc, &r0);
-    for_each3("velocity_rate", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
-          VOIGT_UNROLL
-          for (int d = 0; d < 3; ++d) acc.c[d](i, j, k) -= u.c[d](i, j, k) * rr(i, j, k) / r0(i, j, k);
-        });
   } else {
     evaluateRhs(st, p, u, acc);
   }
-  for_each3("fixed_no_acceleration", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
-        const int m = mask(i, j, k);
-        VOIGT_UNROLL
-        for (int d = 0; d < 3; ++d)
-          if ((m >> d) & 1) acc.c[d](i, j, k) = 0;
-      });
+  initialVelocityRate(acc, u, rr, r0, conservative_, mask, nodeRange(g)); // and 0 where prescribed
   st.halo->exchange(acc);
   const Range3 cells = cellRange(g);
   divergence(g, acc, div, cells);
-  for_each3("initial_pressure_rhs", cells, KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k); });
+  negate(div, rhs, cells);
   Kokkos::deep_copy(dp, 0.0);
   const PoissonStats s = solver_->solve(rhs, dp);
-  for_each3("initial_pressure", cells, KOKKOS_LAMBDA(int i, int j, int k) { pr(i, j, k) += dp(i, j, k); });
+  addTo(dp, pr, cells);
   Kokkos::deep_copy(dp, 0.0);
   st.halo->exchange(pr);
   st.counters["initial_pressure_iterations"] = s.iterations;
@@ -108,8 +100,6 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   IntField mask = st.fields.integer("fix_mask");
   VecField val = st.fields.vector("fix_value");
   const double dt = st.dt;
-  VOIGT_UNROLL
-  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(u0.c[c], u.c[c]);
   // Oscillating walls: prescribed values at t^{n+1}. Heun's stages sit at t^n
   // and t^{n+1}: u^n already holds the wall value at t^n, and both the stage-1
   // result u1 (the predictor at t^{n+1}, which stage 2 evaluates) and u* get
@@ -120,45 +110,25 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
       addObstacleMask(g, scene_->obstacles, mask, val);
   }
 
+  // Each stage update stores u^n (stage 1) and re-imposes the prescribed components
+  // in its own pass (kernels/momentum.hpp).
   if (!conservative_) {
     evaluateRhs(st, p, u, rhs);
-    for_each3("rk2_stage1", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-          VOIGT_UNROLL
-          for (int c = 0; c < 3; ++c) u.c[c](i, j, k) += dt * rhs.c[c](i, j, k);
-        });
-    applyFixed(mask, val, u, nodes);
+    momentumStage1(u, u0, rhs, dt, mask, val, nodes);
     evaluateRhs(st, p, u, rhs);
-    for_each3("rk2_stage2", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-          VOIGT_UNROLL
-          for (int c = 0; c < 3; ++c)
-            u.c[c](i, j, k) = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
-        });
-    applyFixed(mask, val, u, nodes);
+    momentumStage2(u, u0, rhs, dt, mask, val, nodes);
     return;
   }
-  // Conservative form (header). A prescribed node keeps its value, so its
-  // momentum is r u with the prescribed u: no special case needed.
+  // Conservative form (header).
   nodeDensity(st);
   Field r0 = st.fields.scalar("momentum_density"), r1 = st.fields.scalar("momentum_density_stage");
   Field rr = st.fields.scalar("momentum_density_rhs");
   evaluateRhs(st, p, u, rhs, &r0);
-  for_each3("rk2_stage1_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-        const double a = r0(i, j, k), b = a + dt * rr(i, j, k);
-        r1(i, j, k) = b;
-        VOIGT_UNROLL
-        for (int c = 0; c < 3; ++c) u.c[c](i, j, k) = a * (u.c[c](i, j, k) + dt * rhs.c[c](i, j, k)) / b;
-      });
-  applyFixed(mask, val, u, nodes);
+  momentumStage1Conservative(r0, rr, r1, u, u0, rhs, dt, mask, val, nodes);
   st.halo->exchange(r1);
   fillNodeGhostsEven(g, r1);
   evaluateRhs(st, p, u, rhs, &r1);
-  for_each3("rk2_stage2_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-        const double a = r0(i, j, k), b = r1(i, j, k), r = 0.5 * (a + b + dt * rr(i, j, k));
-        VOIGT_UNROLL
-        for (int c = 0; c < 3; ++c)
-          u.c[c](i, j, k) = (a * u0.c[c](i, j, k) + b * u.c[c](i, j, k) + dt * a * rhs.c[c](i, j, k)) / (2 * r);
-      });
-  applyFixed(mask, val, u, nodes);
+  momentumStage2Conservative(r0, r1, rr, u, u0, rhs, dt, mask, val, nodes);
 }
 
 } // namespace voigt

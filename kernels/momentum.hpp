@@ -1,0 +1,107 @@
+#pragma once
+// Momentum predictor kernel family, Eq. (7) with SSP-RK2 (Heun), as
+// effects/navier_stokes/momentum.cpp drives it:
+//   u1 = u^n + dt R(u^n);   u* = (u^n + u1 + dt R(u1)) / 2
+// and, where the density varies, the conservative form (node density r, r0 = rho^n):
+//   r1 = r0 + dt Rr(r0, u^n),          u1 = r0 (u^n + dt R(u^n)) / r1
+//   r* = (r0 + r1 + dt Rr(r1, u1))/2,  u* = (r0 u^n + r1 u1 + dt r0 R(u1)) / (2 r*)
+// Each stage update re-imposes the prescribed components (mask bit d: u_d = val_d)
+// in the same pass, and stage 1 stores u^n for stage 2: one sweep over the nodes
+// where there were three (copy, update, applyFixed), with the same operations in the
+// same order (bit-identical to the separate passes).
+#include "core/field.hpp"
+#include "core/index_space.hpp"
+#include "kernels/projection_ops.hpp"
+
+namespace voigt {
+
+// r0 = rho^n at the nodes: the mean of the cells around each node, as the projection's 1/rho.
+inline void nodeDensity(const Grid& g, const Field& rho, const Field& r0, Range3 nodes) {
+  GridGeom G(g);
+  for_each3("node_density", nodes, KOKKOS_LAMBDA(int i, int j, int k) { r0(i, j, k) = G.nodeMean(rho, i, j, k); });
+}
+
+// Non-conservative stage 1: u0 = u; u += dt rhs; prescribed components re-imposed.
+inline void momentumStage1(const VecField& u, const VecField& u0, const VecField& rhs, double dt,
+                           const IntField& mask, const VecField& val, Range3 nodes) {
+  for_each3("rk2_stage1", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+    const int m = mask(i, j, k);
+    VOIGT_UNROLL
+    for (int c = 0; c < 3; ++c) {
+      const double un = u.c[c](i, j, k);
+      u0.c[c](i, j, k) = un;
+      u.c[c](i, j, k) = (m >> c) & 1 ? val.c[c](i, j, k) : un + dt * rhs.c[c](i, j, k);
+    }
+  });
+}
+
+// Non-conservative stage 2: u = (u0 + u + dt rhs) / 2; prescribed components re-imposed.
+inline void momentumStage2(const VecField& u, const VecField& u0, const VecField& rhs, double dt,
+                           const IntField& mask, const VecField& val, Range3 nodes) {
+  for_each3("rk2_stage2", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+    const int m = mask(i, j, k);
+    VOIGT_UNROLL
+    for (int c = 0; c < 3; ++c) {
+      const double s = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
+      u.c[c](i, j, k) = (m >> c) & 1 ? val.c[c](i, j, k) : s;
+    }
+  });
+}
+
+// Conservative stage 1: r1 = r0 + dt rr; u0 = u; u = r0 (u + dt rhs) / r1. A prescribed
+// node keeps its value, so its momentum is r u with the prescribed u: no special case.
+inline void momentumStage1Conservative(const Field& r0, const Field& rr, const Field& r1, const VecField& u,
+                                       const VecField& u0, const VecField& rhs, double dt, const IntField& mask,
+                                       const VecField& val, Range3 nodes) {
+  for_each3("rk2_stage1_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double a = r0(i, j, k), b = a + dt * rr(i, j, k);
+    r1(i, j, k) = b;
+    const int m = mask(i, j, k);
+    VOIGT_UNROLL
+    for (int c = 0; c < 3; ++c) {
+      const double un = u.c[c](i, j, k);
+      u0.c[c](i, j, k) = un;
+      u.c[c](i, j, k) = (m >> c) & 1 ? val.c[c](i, j, k) : a * (un + dt * rhs.c[c](i, j, k)) / b;
+    }
+  });
+}
+
+// Conservative stage 2: u = (r0 u0 + r1 u + dt r0 rhs) / (2 r*), r* = (r0 + r1 + dt rr) / 2.
+inline void momentumStage2Conservative(const Field& r0, const Field& r1, const Field& rr, const VecField& u,
+                                       const VecField& u0, const VecField& rhs, double dt, const IntField& mask,
+                                       const VecField& val, Range3 nodes) {
+  for_each3("rk2_stage2_conservative", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double a = r0(i, j, k), b = r1(i, j, k), r = 0.5 * (a + b + dt * rr(i, j, k));
+    const int m = mask(i, j, k);
+    VOIGT_UNROLL
+    for (int c = 0; c < 3; ++c) {
+      const double s = (a * u0.c[c](i, j, k) + b * u.c[c](i, j, k) + dt * a * rhs.c[c](i, j, k)) / (2 * r);
+      u.c[c](i, j, k) = (m >> c) & 1 ? val.c[c](i, j, k) : s;
+    }
+  });
+}
+
+// Initial pressure (momentum.cpp): the velocity rate of the conservative form,
+// acc -= u rr / r0, and zero acceleration at prescribed components.
+inline void initialVelocityRate(const VecField& acc, const VecField& u, const Field& rr, const Field& r0,
+                                bool conservative, const IntField& mask, Range3 nodes) {
+  for_each3("initial_velocity_rate", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+    const int m = mask(i, j, k);
+    VOIGT_UNROLL
+    for (int d = 0; d < 3; ++d) {
+      double a = acc.c[d](i, j, k);
+      if (conservative) a -= u.c[d](i, j, k) * rr(i, j, k) / r0(i, j, k);
+      acc.c[d](i, j, k) = (m >> d) & 1 ? 0.0 : a;
+    }
+  });
+}
+
+// p += dp and rhs = -div over cells (initial pressure: D B G p0 = D R(u^0)).
+inline void negate(const Field& src, const Field& dst, Range3 cells) {
+  for_each3("negate", cells, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = -src(i, j, k); });
+}
+inline void addTo(const Field& src, const Field& dst, Range3 cells) {
+  for_each3("add_to", cells, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) += src(i, j, k); });
+}
+
+} // namespace voigt
