@@ -96,12 +96,4 @@ inline void initialVelocityRate(const VecField& acc, const VecField& u, const Fi
   });
 }
 
-// p += dp and rhs = -div over cells (initial pressure: D B G p0 = D R(u^0)).
-inline void negate(const Field& src, const Field& dst, Range3 cells) {
-  for_each3("negate", cells, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = -src(i, j, k); });
-}
-inline void addTo(const Field& src, const Field& dst, Range3 cells) {
-  for_each3("add_to", cells, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) += src(i, j, k); });
-}
-
 } // namespace voigt

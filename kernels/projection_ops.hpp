@@ -116,4 +116,27 @@ inline void subtractGradient(const Grid& g, const Field& p, const VecField& coef
       });
 }
 
+// coef_d(n) = 0 where component d is prescribed (mask bit d), else 1/rho_n (the mean
+// of the existing cells around the node): B of the projection, 1/rho of Eq. (7).
+inline void projectionCoefficients(const Grid& g, const Field& rho, const IntField& mask, const VecField& coef,
+                                   Range3 nodes) {
+  GridGeom G(g);
+  for_each3("projection_coef", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+        const double inv = 1 / G.nodeMean(rho, i, j, k);
+        const int m = mask(i, j, k);
+        VOIGT_UNROLL
+        for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) = (m >> d) & 1 ? 0.0 : inv;
+      });
+}
+
+// The Poisson right-hand side rhs = -div / dt (dt = 1: the initial pressure's -div, exactly).
+inline void poissonRhs(const Field& div, const Field& rhs, double dt, Range3 cells) {
+  for_each3("poisson_rhs", cells, KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k) / dt; });
+}
+
+// dst += src (the pressure update p += dp).
+inline void addTo(const Field& src, const Field& dst, Range3 cells) {
+  for_each3("add_to", cells, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) += src(i, j, k); });
+}
+
 } // namespace voigt

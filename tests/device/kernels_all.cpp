@@ -209,9 +209,11 @@ void momentum(const Grid& g, Fields& f) {
   put("momentumStage2Conservative", sumAbs(f.u2, nodes));
   initialVelocityRate(f.u2, f.u, f.q, r0, true, mask, nodes);
   put("initialVelocityRate", sumAbs(f.u2, nodes));
-  negate(f.p, f.div, cells);
-  addTo(f.q, f.div, cells); // div = q - p
-  put("negate+addTo", sumAbs(f.div, cells));
+  poissonRhs(f.p, f.div, 2.0, cells);
+  addTo(f.q, f.div, cells); // div = q - p / 2
+  put("poissonRhs+addTo", sumAbs(f.div, cells));
+  projectionCoefficients(g, f.rho, mask, f.u2, nodes);
+  put("projectionCoefficients", sumAbs(f.u2, nodes));
 }
 
 void elasticity(const Grid& g, Fields& f) {

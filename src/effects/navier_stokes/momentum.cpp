@@ -78,7 +78,7 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   st.halo->exchange(acc);
   const Range3 cells = cellRange(g);
   divergence(g, acc, div, cells);
-  negate(div, rhs, cells);
+  poissonRhs(div, rhs, 1.0, cells); // -div
   Kokkos::deep_copy(dp, 0.0);
   const PoissonStats s = solver_->solve(rhs, dp);
   addTo(dp, pr, cells);

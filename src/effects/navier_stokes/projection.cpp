@@ -21,18 +21,12 @@ namespace voigt {
 // existing cells around the node).
 void NavierStokes::refreshCoefficients(State& st) {
   const Grid& g = st.grid;
-  GridGeom G(g);
   Field rho = st.fields.scalar("density");
   IntField mask = st.fields.integer("fix_mask");
   VecField coef = st.fields.vector("proj_coef");
   st.halo->exchange(rho);
   fillCellGhostsEven(g, rho);
-  for_each3("projection_coef", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double inv = 1 / G.nodeMean(rho, i, j, k);
-        const int m = mask(i, j, k);
-        VOIGT_UNROLL
-        for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) = (m >> d) & 1 ? 0.0 : inv;
-      });
+  projectionCoefficients(g, rho, mask, coef, nodeRange(g));
   st.halo->exchange(coef);
   solver_->setCoefficients(coef);
   st.propertiesChanged = false;
@@ -66,12 +60,12 @@ void NavierStokes::project(State& st) {
   st.halo->exchange(u);
   divergence(g, u, div, cells);
   st.diag["max_divergence_predicted"] = globalMaxAbs(g, div, cells);
-  for_each3("poisson_rhs", cells, KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k) / dt; });
+  poissonRhs(div, rhs, dt, cells);
   // dp of the previous step is the initial guess.
   const PoissonStats s = solver_->solve(rhs, dp);
   st.halo->exchange(dp);
   subtractGradient(g, dp, coef, dt, u, nodeRange(g));
-  for_each3("pressure_update", cells, KOKKOS_LAMBDA(int i, int j, int k) { p(i, j, k) += dp(i, j, k); });
+  addTo(dp, p, cells);
   st.halo->exchange(p);
   st.halo->exchange(u);
   fillVelocityGhosts(g, *st.scene, u);
