@@ -156,39 +156,8 @@ void SolidBody::measure(State& st, double time) {
   const VecField u = st.fields.vector("velocity");
   const double kappa = geo_.kappa(g), band = 2 * hmin_, hm = hmin_;
   const SolidTargets tg = targets_;
-  const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
-  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
-  const double lo0 = g.lo[0], lo1 = g.lo[1], lo2 = g.lo[2];
-  // Moments about the domain centre (conditioning of the second moments).
+  SolidAcc acc = solidMoments(g, psi, u, kappa, band, hm, tg); // moments about the domain centre r
   const double r0 = 0.5 * (g.lo[0] + g.hi[0]), r1 = 0.5 * (g.lo[1] + g.hi[1]), r2 = 0.5 * (g.lo[2] + g.hi[2]);
-  SolidAcc acc;
-  Kokkos::parallel_reduce(
-      "solid_body_moments", cellRange(g).policy(),
-      KOKKOS_LAMBDA(int i, int j, int k, SolidAcc& a) {
-        const double p = psi(i, j, k);
-        const double x[3] = {lo0 + (i - ng + c0 + 0.5) * h0, lo1 + (j - ng + c1 + 0.5) * h1,
-                             lo2 + (k - ng + c2 + 0.5) * h2};
-        if (tg.n > 0 && p > -band && p < hm) { // outside and the first layer in: deeper, psi has ridges
-          // Fluid cells inside an obstacle are skipped: its fixed velocity leaves psi there
-          // stale (not a distance), e.g. the fringe of a block resting on the cylinder.
-          bool stale = false;
-          for (int q = 0; q < tg.n; ++q)
-            if (tg.t[q].kind <= 2 && p <= 0 && targetDistance(tg.t[q], x) < 0) stale = true;
-          if (!stale)
-            for (int q = 0; q < tg.n; ++q) a.m[q] = Kokkos::Experimental::fmin(a.m[q], targetDistance(tg.t[q], x) - p);
-        }
-        const double w = smoothedHeaviside(p, kappa);
-        if (w <= 0) return;
-        double v[3] = {0, 0, 0};
-        for (int d = 0; d < 3; ++d)
-          for (int n = 0; n < 8; ++n) v[d] += 0.125 * u.c[d](i + (n & 1), j + ((n >> 1) & 1), k + (n >> 2));
-        const double dx = x[0] - r0, dy = x[1] - r1, dz = x[2] - r2;
-        a.s[0] += w, a.s[1] += w * dx, a.s[2] += w * dy, a.s[3] += w * dz;
-        a.s[4] += w * v[0], a.s[5] += w * v[1], a.s[6] += w * v[2];
-        a.s[7] += w * dx * dx, a.s[8] += w * dy * dy, a.s[9] += w * dz * dz;
-        a.s[10] += w * dx * dy, a.s[11] += w * dy * dz, a.s[12] += w * dz * dx;
-      },
-      SolidReducer(acc));
   MPI_Allreduce(MPI_IN_PLACE, acc.s, kSolidSums, MPI_DOUBLE, MPI_SUM, g.comm);
   MPI_Allreduce(MPI_IN_PLACE, acc.m, kSolidTargets, MPI_DOUBLE, MPI_MIN, g.comm);
   auto& dg = st.diag;

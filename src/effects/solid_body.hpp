@@ -1,85 +1,11 @@
 #pragma once
-// Kernel helpers of the solid_body effect (solid_body.cpp): a combined
-// sum + min reducer (Kokkos 3.4 reducer concept, as Kokkos::Sum), and the
-// signed distance to an obstacle's surface or a domain face, the principal
-// axes (host, 3x3) and the bending of the mid-surface.
-#include <mpi.h>
-
-#include <Kokkos_Core.hpp>
+// Host helpers of the solid_body effect (solid_body.cpp): the principal axes of the
+// second-moment tensor. Its kernels are in kernels/solid_body.hpp.
 #include <cmath>
 
-#include "core/field.hpp"
-#include "core/grid.hpp"
-#include "core/index_space.hpp"
-#include "kernels/heaviside.hpp"
+#include "kernels/solid_body.hpp"
 
 namespace voigt {
-
-constexpr int kSolidSums = 13;    // w, w x (3), w v (3), w xx, yy, zz, xy, yz, zx
-constexpr int kSolidTargets = 32; // obstacles + up to 6 domain faces
-
-struct SolidAcc {
-  double s[kSolidSums];
-  double m[kSolidTargets];
-};
-
-struct SolidReducer {
-  using reducer = SolidReducer;
-  using value_type = SolidAcc;
-  using result_view_type = Kokkos::View<value_type, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
-  result_view_type value;
-  SolidReducer(value_type& v) : value(&v) {}
-  KOKKOS_INLINE_FUNCTION void join(value_type& d, const value_type& s) const {
-    for (int q = 0; q < kSolidSums; ++q) d.s[q] += s.s[q];
-    for (int q = 0; q < kSolidTargets; ++q) d.m[q] = s.m[q] < d.m[q] ? s.m[q] : d.m[q];
-  }
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type& d, const volatile value_type& s) const {
-    for (int q = 0; q < kSolidSums; ++q) d.s[q] += s.s[q];
-    for (int q = 0; q < kSolidTargets; ++q) d.m[q] = s.m[q] < d.m[q] ? s.m[q] : d.m[q];
-  }
-  KOKKOS_INLINE_FUNCTION void init(value_type& v) const {
-    for (int q = 0; q < kSolidSums; ++q) v.s[q] = 0;
-    for (int q = 0; q < kSolidTargets; ++q) v.m[q] = 1e300;
-  }
-  KOKKOS_INLINE_FUNCTION value_type& reference() const { return *value.data(); }
-  result_view_type view() const { return value; }
-  KOKKOS_INLINE_FUNCTION bool references_scalar() const { return true; }
-};
-
-// A surface the solid may touch. kind: 0 sphere (center c, radius r), 1
-// cylinder (infinite, as the obstacle mask), 2 box (lo, hi), 3 low face and
-// 4 high face of the domain along `axis` at coordinate c[axis].
-struct SolidTarget {
-  int kind = 0, axis = 0;
-  double c[3] = {0, 0, 0}, r = 0, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-};
-struct SolidTargets {
-  SolidTarget t[kSolidTargets];
-  int n = 0;
-};
-
-// Signed distance from x to the target's surface, > 0 in the fluid.
-KOKKOS_INLINE_FUNCTION double targetDistance(const SolidTarget& t, const double x[3]) {
-  if (t.kind == 0)
-    return std::sqrt((x[0] - t.c[0]) * (x[0] - t.c[0]) + (x[1] - t.c[1]) * (x[1] - t.c[1]) +
-                     (x[2] - t.c[2]) * (x[2] - t.c[2])) - t.r;
-  if (t.kind == 1) {
-    double r2 = 0;
-    for (int d = 0; d < 3; ++d)
-      if (d != t.axis) r2 += (x[d] - t.c[d]) * (x[d] - t.c[d]);
-    return std::sqrt(r2) - t.r;
-  }
-  if (t.kind == 2) { // exact signed distance to a box
-    double out = 0, in = -1e300;
-    for (int d = 0; d < 3; ++d) {
-      const double q = std::fabs(x[d] - 0.5 * (t.lo[d] + t.hi[d])) - 0.5 * (t.hi[d] - t.lo[d]);
-      if (q > 0) out += q * q;
-      in = q > in ? q : in;
-    }
-    return std::sqrt(out) + (in < 0 ? in : 0);
-  }
-  return t.kind == 3 ? x[t.axis] - t.c[t.axis] : t.c[t.axis] - x[t.axis];
-}
 
 // Jacobi rotations on a symmetric 3x3 (host, 9 numbers; as block_track.py).
 inline void eigenSym3(double a[3][3], double ev[3], double v[3][3]) {
@@ -107,84 +33,6 @@ inline void eigenSym3(double a[3][3], double ev[3], double v[3][3]) {
       }
   }
   for (int i = 0; i < 3; ++i) ev[i] = a[i][i];
-}
-
-inline double det3(const double m[3][3]) {
-  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-}
-
-// Mid-surface columns and their deviation from the best-fit plane (header comment).
-inline double solidBending(const Grid& g, const Field& psi, double kappa, double hm, int R,
-                           const Kokkos::View<double* [4], MemSpace>& bins, const double c[3], const double e[3][3]) {
-  Kokkos::deep_copy(bins, 0.0);
-  const int ng = g.ng, i0 = g.c0[0], j0 = g.c0[1], k0 = g.c0[2], nb = 2 * R + 1;
-  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
-  const double x0 = g.lo[0] - c[0], y0 = g.lo[1] - c[1], z0 = g.lo[2] - c[2];
-  const double n0 = e[0][0], n1 = e[0][1], n2 = e[0][2], a0 = e[1][0], a1 = e[1][1], a2 = e[1][2];
-  const double b0 = e[2][0], b1 = e[2][1], b2 = e[2][2];
-  // Scatter-add (atomics): a plain parallel_for, never for_each3's ivdep loop.
-  Kokkos::parallel_for("solid_body_columns", cellRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double w = smoothedHeaviside(psi(i, j, k), kappa);
-        if (w <= 0) return;
-        const double dx = x0 + (i - ng + i0 + 0.5) * h0, dy = y0 + (j - ng + j0 + 0.5) * h1,
-                     dz = z0 + (k - ng + k0 + 0.5) * h2;
-        const double a = a0 * dx + a1 * dy + a2 * dz, b = b0 * dx + b1 * dy + b2 * dz, s = n0 * dx + n1 * dy + n2 * dz;
-        // Bilinear (cloud-in-cell) share to the 4 nearest column centres: a cell
-        // on a column boundary splits evenly, so no rounding tie moves it.
-        const double fa = a / hm, fb = b / hm;
-        const int ia = int(std::floor(fa)), ib = int(std::floor(fb));
-        for (int n = 0; n < 4; ++n) {
-          const int qa = ia + (n & 1) + R, qb = ib + (n >> 1) + R;
-          if (qa < 0 || qa >= nb || qb < 0 || qb >= nb) continue;
-          const double kw = w * ((n & 1) ? fa - ia : 1 - (fa - ia)) * ((n >> 1) ? fb - ib : 1 - (fb - ib));
-          const int q = qa + nb * qb;
-          Kokkos::atomic_add(&bins(q, 0), kw * a);
-          Kokkos::atomic_add(&bins(q, 1), kw * b);
-          Kokkos::atomic_add(&bins(q, 2), kw * s);
-          Kokkos::atomic_add(&bins(q, 3), kw);
-        }
-      });
-  auto hb = Kokkos::create_mirror_view(bins);
-  Kokkos::deep_copy(hb, bins);
-  MPI_Allreduce(MPI_IN_PLACE, hb.data(), int(hb.size()), MPI_DOUBLE, MPI_SUM, g.comm);
-  Kokkos::deep_copy(bins, hb);
-  // Normal equations of the least-squares plane s = p0 + p1 a + p2 b over the columns.
-  SolidAcc fit;
-  const auto cols = Kokkos::RangePolicy<ExecSpace>(0, nb * nb);
-  Kokkos::parallel_reduce(
-      "solid_body_plane", cols,
-      KOKKOS_LAMBDA(int q, SolidAcc& f) {
-        const double W = bins(q, 3);
-        if (W < 1) return; // at least one cell's worth of solid
-        const double a = bins(q, 0) / W, b = bins(q, 1) / W, s = bins(q, 2) / W;
-        f.s[0] += 1, f.s[1] += a, f.s[2] += b, f.s[3] += a * a, f.s[4] += a * b, f.s[5] += b * b;
-        f.s[6] += s, f.s[7] += a * s, f.s[8] += b * s;
-      },
-      SolidReducer(fit));
-  if (fit.s[0] < 3) return 0;
-  const double A[3][3] = {{fit.s[0], fit.s[1], fit.s[2]}, {fit.s[1], fit.s[3], fit.s[4]}, {fit.s[2], fit.s[4], fit.s[5]}};
-  const double rhs[3] = {fit.s[6], fit.s[7], fit.s[8]}, D = det3(A);
-  if (!(std::fabs(D) > 0)) return 0;
-  double p[3]; // Cramer's rule
-  for (int col = 0; col < 3; ++col) {
-    double M[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int cc = 0; cc < 3; ++cc) M[r][cc] = cc == col ? rhs[r] : A[r][cc];
-    p[col] = det3(M) / D;
-  }
-  const double p0 = p[0], p1 = p[1], p2 = p[2];
-  double dev = 0;
-  Kokkos::parallel_reduce(
-      "solid_body_bending", cols,
-      KOKKOS_LAMBDA(int q, double& m) {
-        const double W = bins(q, 3);
-        if (W < 1) return;
-        const double d = std::fabs(bins(q, 2) / W - p0 - p1 * bins(q, 0) / W - p2 * bins(q, 1) / W);
-        if (d > m) m = d;
-      },
-      Kokkos::Max<double>(dev));
-  return dev;
 }
 
 } // namespace voigt

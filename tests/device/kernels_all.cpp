@@ -33,6 +33,7 @@
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
 #include "kernels/reinit.hpp"
+#include "kernels/solid_body.hpp"
 #include "kernels/stress.hpp"
 
 using namespace voigt;
@@ -216,6 +217,25 @@ void momentum(const Grid& g, Fields& f) {
   put("projectionCoefficients", sumAbs(f.u2, nodes));
 }
 
+// The solid_body effect's kernels: moments and gaps (a sphere target and a low x face)
+// of the psi > 0 sphere, and the bending of its mid-surface in the axis frame.
+void solidBody(const Grid& g, Fields& f) {
+  SolidTargets tg;
+  tg.n = 2;
+  tg.t[0].kind = 0, tg.t[0].r = 0.1, tg.t[0].c[0] = 0.5, tg.t[0].c[1] = 0.1, tg.t[0].c[2] = 0.3;
+  tg.t[1].kind = 3, tg.t[1].axis = 0, tg.t[1].c[0] = 0.0;
+  const double h = g.h[0];
+  const SolidAcc a = solidMoments(g, f.psi, f.u, 2 * h, 2 * h, h, tg);
+  double s = 0;
+  for (int q = 0; q < kSolidSums; ++q) s += std::fabs(a.s[q]);
+  put("solidMoments.sums", s);
+  put("solidMoments.gaps", a.m[0] + 10 * a.m[1]);
+  const int R = 10;
+  Kokkos::View<double* [4], MemSpace> bins("bins", (2 * R + 1) * (2 * R + 1));
+  const double c[3] = {0.5, 0.4, 0.3}, e[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
+  put("solidBending", solidBending(g, f.psi, 2 * h, h, R, bins, c, e));
+}
+
 void elasticity(const Grid& g, Fields& f) {
   const double h = g.h[0];
   const IntList owned("owned", size_t(g.cellsOwned())), grown("grown", size_t(cellRange(g, 1).size()));
@@ -333,6 +353,7 @@ int main(int argc, char** argv) {
       projectionStressReductions(g, f);
       elasticity(g, f);
       reinitialisation(g, f);
+      solidBody(g, f);
       momentum(g, f);
     }
     freeGrid(g);
