@@ -288,5 +288,47 @@ KOKKOS_INLINE_FUNCTION double secondInvariant(double xx, double yy, double zz, d
   return xx * yy + yy * zz + zz * xx + xy * xy + yz * yz + zx * zx;
 }
 
+
+// Initial solid stress: tau_S = a (6 components) where psi > 0, else 0, on the owned cells.
+inline void initialStress(const Grid& g, const Field& psi, const SymTensorField& tau, const double a[6]) {
+  const SymTensorField t = tau;
+  const double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3], a4 = a[4], a5 = a[5];
+  for_each3("elastic_initial_stress", cellRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
+        const bool in = psi(i, j, k) > 0;
+        t.c[0](i, j, k) = in ? a0 : 0.0;
+        t.c[1](i, j, k) = in ? a1 : 0.0;
+        t.c[2](i, j, k) = in ? a2 : 0.0;
+        t.c[3](i, j, k) = in ? a3 : 0.0;
+        t.c[4](i, j, k) = in ? a4 : 0.0;
+        t.c[5](i, j, k) = in ? a5 : 0.0;
+      });
+}
+
+// tau_S = 0 outside the band (psi <= thr): over the band's box, and on the cells of
+// last step's list (prev), whose S2 and log10 S2 also return to their reset values.
+inline void zeroOutsideBand(const Grid& g, const Field& psi, double thr, const SymTensorField& tau, Range3 box,
+                            bool anyBox, const IntList& prev, int nPrev, const Field& S2, const Field& lg,
+                            double floorLog) {
+  const SymTensorField t = tau;
+  if (anyBox)
+    for_each3("elastic_zero_box", box, KOKKOS_LAMBDA(int i, int j, int k) {
+          if (psi(i, j, k) <= thr)
+            for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
+        });
+  if (nPrev <= 0) return;
+  const Unpack up{g.ext[0], g.ext[1]};
+  Kokkos::parallel_for(
+      "elastic_zero_left", Kokkos::RangePolicy<ExecSpace>(0, nPrev), KOKKOS_LAMBDA(int p) {
+        int i, j, k;
+        up(prev(p), i, j, k);
+        if (psi(i, j, k) <= thr) {
+          VOIGT_UNROLL
+          for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
+          S2(i, j, k) = 0;
+          lg(i, j, k) = floorLog;
+        }
+      });
+}
+
 } // namespace elastic
 } // namespace voigt

@@ -81,6 +81,15 @@ inline void momentumStage2Conservative(const Field& r0, const Field& r1, const F
   });
 }
 
+// rhs += g, a uniform body force per unit mass (the gravity effect's Forces task).
+inline void addBodyForce(const VecField& rhs, double g0, double g1, double g2, Range3 nodes) {
+  for_each3("gravity", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+    rhs.c[0](i, j, k) += g0;
+    rhs.c[1](i, j, k) += g1;
+    rhs.c[2](i, j, k) += g2;
+  });
+}
+
 // Initial pressure (momentum.cpp): the velocity rate of the conservative form,
 // acc -= u rr / r0, and zero acceleration at prescribed components.
 inline void initialVelocityRate(const VecField& acc, const VecField& u, const Field& rr, const Field& r0,

@@ -61,6 +61,15 @@ inline long long countNonFinite(const Field& f, Range3 r) {
   return n;
 }
 
+// Owned nodes whose three components are all prescribed (mask == 7), on this rank.
+inline long long countFullyFixed(const IntField& mask, Range3 nodes) {
+  long long n = 0;
+  Kokkos::parallel_reduce(
+      "count_fixed", nodes.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, long long& acc) { acc += mask(i, j, k) == 7 ? 1 : 0; }, n);
+  return n;
+}
+
 inline double globalSum(const Grid& g, double local) {
   double out = 0;
   MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_SUM, g.comm);

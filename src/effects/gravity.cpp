@@ -4,6 +4,7 @@
 
 #include "core/index_space.hpp"
 #include "effects/effect.hpp"
+#include "kernels/momentum.hpp"
 
 namespace voigt {
 
@@ -27,13 +28,7 @@ class Gravity : public Effect {
   void registerTasks(Pipeline& p) override {
     const Vec3 g = g_;
     p.add(Stage::Forces, name(), "uniform body force g", [g](State& st) {
-      VecField rhs = st.evalRhs;
-      const double g0 = g[0], g1 = g[1], g2 = g[2];
-      for_each3("gravity", nodeRange(st.grid), KOKKOS_LAMBDA(int i, int j, int k) {
-            rhs.c[0](i, j, k) += g0;
-            rhs.c[1](i, j, k) += g1;
-            rhs.c[2](i, j, k) += g2;
-          });
+      addBodyForce(st.evalRhs, g[0], g[1], g[2], nodeRange(st.grid));
     });
   }
 

@@ -20,10 +20,7 @@ class Obstacles : public Effect {
     applyFixed(mask, st.fields.vector("fix_value"), st.fields.vector("velocity"),
                Range3{{0, 0, 0}, {st.grid.ext[0], st.grid.ext[1], st.grid.ext[2]}});
     // Count the fully fixed owned nodes for the summary.
-    long long n = 0;
-    Kokkos::parallel_reduce(
-        "count_fixed", nodeRange(st.grid).policy(),
-        KOKKOS_LAMBDA(int i, int j, int k, long long& acc) { acc += mask(i, j, k) == 7 ? 1 : 0; }, n);
+    long long n = countFullyFixed(mask, nodeRange(st.grid));
     long long tot = 0;
     MPI_Allreduce(&n, &tot, 1, MPI_LONG_LONG, MPI_SUM, st.grid.comm);
     fixedNodes_ = tot;

@@ -236,6 +236,30 @@ void solidBody(const Grid& g, Fields& f) {
   put("solidBending", solidBending(g, f.psi, 2 * h, h, R, bins, c, e));
 }
 
+// Small kernels of the effects (initial stress, band zeroing, gravity, the fixed-node
+// count). Runs after everything else: it overwrites tau2, u2, psi1 and q.
+void effectKernels(const Grid& g, Fields& f) {
+  const Range3 nodes = nodeRange(g), cells = cellRange(g);
+  const double a[6] = {1, 2, 3, 0.1, 0.2, 0.3};
+  elastic::initialStress(g, f.psi, f.tau2, a);
+  put("initialStress", sumAbs(f.tau2, cells));
+  const IntList prev("prev", size_t(g.cellsOwned()));
+  const int nPrev = elastic::buildActiveList(g, f.psi, -4 * g.h[0], cells, prev);
+  const Range3 box = elastic::listBox(g, prev, nPrev);
+  Kokkos::deep_copy(f.psi1, 1.0);
+  Kokkos::deep_copy(f.q, 1.0);
+  for (int c = 0; c < 6; ++c) Kokkos::deep_copy(f.tau2.c[c], 1.0);
+  elastic::zeroOutsideBand(g, f.psi, 0.05, f.tau2, box, true, prev, nPrev, f.psi1, f.q, -3.0);
+  put("zeroOutsideBand", sumAbs(f.tau2, cellRange(g, 1)) + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.u2.c[c], 0.5);
+  addBodyForce(f.u2, 0.1, -9.81, 0.2, nodes);
+  put("addBodyForce", sumAbs(f.u2, nodes));
+  const IntField mask("mask7", g.ext[0], g.ext[1], g.ext[2]);
+  Kokkos::parallel_for(
+      "check_mask7", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = (i + 2 * j + k) % 3 ? 7 : 3; });
+  put("countFullyFixed", double(countFullyFixed(mask, nodes)));
+}
+
 void elasticity(const Grid& g, Fields& f) {
   const double h = g.h[0];
   const IntList owned("owned", size_t(g.cellsOwned())), grown("grown", size_t(cellRange(g, 1).size()));
@@ -355,6 +379,7 @@ int main(int argc, char** argv) {
       reinitialisation(g, f);
       solidBody(g, f);
       momentum(g, f);
+      effectKernels(g, f);
     }
     freeGrid(g);
     std::printf("voigt_kernels_all: Kokkos %s, %zu checksums\n", Kokkos::DefaultExecutionSpace::name(), gSums.size());

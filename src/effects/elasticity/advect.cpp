@@ -47,29 +47,8 @@ void Elasticity::advect(State& st) {
       advanceCellAdvection(g, t.c[c], o[c], u, box, limiter_, dt, stage == 0 ? 1.0 : 0.5, stage == 0, flux_);
   }
   // tau_S = 0 outside the band: in the box, and where the band was last step.
-  const double thr = threshold_;
-  if (any)
-    for_each3("elastic_zero_box", box, KOKKOS_LAMBDA(int i, int j, int k) {
-          if (psi(i, j, k) <= thr)
-            for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
-        });
-  if (nPrev_ > 0) {
-    const elastic::Unpack up{g.ext[0], g.ext[1]};
-    const elastic::IntList prev = prev_;
-    Field S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
-    const double floorLog = 2 * std::log10(1e-6 * mu_);
-    Kokkos::parallel_for(
-        "elastic_zero_left", Kokkos::RangePolicy<ExecSpace>(0, nPrev_), KOKKOS_LAMBDA(int p) {
-          int i, j, k;
-          up(prev(p), i, j, k);
-          if (psi(i, j, k) <= thr) {
-            VOIGT_UNROLL
-            for (int c = 0; c < 6; ++c) t.c[c](i, j, k) = 0;
-            S2(i, j, k) = 0;
-            lg(i, j, k) = floorLog;
-          }
-        });
-  }
+  elastic::zeroOutsideBand(g, psi, threshold_, t, box, any, prev_, nPrev_, st.fields.scalar("S2"),
+                           st.fields.scalar("log10_S2"), 2 * std::log10(1e-6 * mu_));
   refreshStress(st); // the Stress stage reads one ghost layer
 }
 

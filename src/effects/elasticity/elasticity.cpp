@@ -111,16 +111,7 @@ void Elasticity::setup(State& st) {
   // Initial stress where psi > 0 (psi is set up: level_set runs first).
   const SymTensorField t = solidStressField(st.fields);
   Field psi = st.fields.scalar("psi");
-  const double a0 = tau0_[0], a1 = tau0_[1], a2 = tau0_[2], a3 = tau0_[3], a4 = tau0_[4], a5 = tau0_[5];
-  for_each3("elastic_initial_stress", cellRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
-        const bool in = psi(i, j, k) > 0;
-        t.c[0](i, j, k) = in ? a0 : 0.0;
-        t.c[1](i, j, k) = in ? a1 : 0.0;
-        t.c[2](i, j, k) = in ? a2 : 0.0;
-        t.c[3](i, j, k) = in ? a3 : 0.0;
-        t.c[4](i, j, k) = in ? a4 : 0.0;
-        t.c[5](i, j, k) = in ? a5 : 0.0;
-      });
+  elastic::initialStress(g, psi, t, tau0_);
   const double floorLog = std::log10(1e-6 * mu_) * 2; // see diagnose(): log10 of (1e-6 mu_S)^2
   Kokkos::deep_copy(st.fields.scalar("S2"), 0.0);
   Kokkos::deep_copy(st.fields.scalar("log10_S2"), floorLog);
