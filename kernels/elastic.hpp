@@ -330,5 +330,47 @@ inline void zeroOutsideBand(const Grid& g, const Field& psi, double thr, const S
       });
 }
 
+
+// Per listed cell: S2 (secondInvariant) and log10 |S2| floored at (1e-6 mu_S)^2 (a strain of
+// 1e-6, so that stress-free cells do not swamp a colour map with -infinity; the paper shades
+// by "the magnitude of the logarithm", and S2 of a deviatoric stress can be negative). Local
+// sums: energy = sum H(psi) tau_S:tau_S / (4 mu_S) dV, maxS2 = max |S2| inside the solid.
+inline void stressDiagnostics(const Grid& g, const SymTensorField& tau, const Field& psi, const Field& S2,
+                              const Field& lg, const IntList& cell, int n, double kappa, double mu, double& energy,
+                              double& maxS2) {
+  const Unpack up{g.ext[0], g.ext[1]};
+  const SymTensorField t = tau;
+  const double dv = g.cellVolume(), inv4mu = 1 / (4 * mu);
+  const double floorS2 = (1e-6 * mu) * (1e-6 * mu);
+  double e = 0, m = 0;
+  Kokkos::parallel_reduce(
+      "elastic_diagnose", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int p, double& sum) {
+        int i, j, k;
+        up(cell(p), i, j, k);
+        const double xx = t.c[0](i, j, k), yy = t.c[1](i, j, k), zz = t.c[2](i, j, k);
+        const double xy = t.c[3](i, j, k), yz = t.c[4](i, j, k), zx = t.c[5](i, j, k);
+        const double s2 = secondInvariant(xx, yy, zz, xy, yz, zx);
+        S2(i, j, k) = s2;
+        const double a = std::fabs(s2);
+        lg(i, j, k) = std::log10(a > floorS2 ? a : floorS2);
+        const double H = smoothedHeaviside(psi(i, j, k), kappa);
+        sum += H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
+      },
+      e);
+  Kokkos::parallel_reduce(
+      "elastic_max_S2", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int p, double& mx) {
+        int i, j, k;
+        up(cell(p), i, j, k);
+        const double a = psi(i, j, k) > 0 ? std::fabs(S2(i, j, k)) : 0.0; // inside the solid only
+        if (a > mx) mx = a;
+      },
+      Kokkos::Max<double>(m));
+  if (n == 0) m = 0; // the Max reducer starts at the lowest double
+  energy = e;
+  maxS2 = m;
+}
+
 } // namespace elastic
 } // namespace voigt

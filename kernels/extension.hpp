@@ -72,14 +72,12 @@ inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, co
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   const FlatField ps = flat(psi);
   // 1 / |x_nb - x_c|^2 for the 27 offsets (0 for the cell itself, which never has dp > 0).
-  struct Inv {
-    double v[27];
-  } inv;
+  Kokkos::Array<double, 27> inv; // (a type local to the function cannot be captured by a CUDA lambda)
   for (int dk = -1; dk <= 1; ++dk)
     for (int dj = -1; dj <= 1; ++dj)
       for (int di = -1; di <= 1; ++di) {
         const double x = di * h0, y = dj * h1, z = dk * h2, r2 = x * x + y * y + z * z;
-        inv.v[(dk + 1) * 9 + (dj + 1) * 3 + di + 1] = r2 > 0 ? 1 / r2 : 0;
+        inv[(dk + 1) * 9 + (dj + 1) * 3 + di + 1] = r2 > 0 ? 1 / r2 : 0;
       }
   FlatField s[6], d[6];
   for (int c = 0; c < 6; ++c) s[c] = flat(src.c[c]), d[c] = flat(dst.c[c]);
@@ -97,7 +95,7 @@ inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, co
                 const int o = p + di + dj * sj + dk * sk;
                 const double dp = ps(o) - pc;
                 if (!(dp > 0)) continue;
-                const double w = dp * dp * inv.v[(dk + 1) * 9 + (dj + 1) * 3 + di + 1];
+                const double w = dp * dp * inv[(dk + 1) * 9 + (dj + 1) * 3 + di + 1];
                 a0 += w * s0(o), a1 += w * s1(o), a2 += w * s2(o);
                 a3 += w * s3(o), a4 += w * s4(o), a5 += w * s5(o);
                 wsum += w;

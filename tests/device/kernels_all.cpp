@@ -258,6 +258,9 @@ void effectKernels(const Grid& g, Fields& f) {
   Kokkos::parallel_for(
       "check_mask7", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = (i + 2 * j + k) % 3 ? 7 : 3; });
   put("countFullyFixed", double(countFullyFixed(mask, nodes)));
+  double energy = 0, maxS2 = 0;
+  elastic::stressDiagnostics(g, f.tauS, f.psi, f.psi1, f.q, prev, nPrev, 2 * g.h[0], 100.0, energy, maxS2);
+  put("stressDiagnostics", energy + maxS2 + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
 }
 
 void elasticity(const Grid& g, Fields& f) {

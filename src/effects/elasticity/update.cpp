@@ -46,39 +46,8 @@ void Elasticity::diagnose(State& st) {
   const Grid& g = st.grid;
   const SymTensorField t = solidStressField(st.fields);
   Field psi = st.fields.scalar("psi"), S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
-  const elastic::Unpack up{g.ext[0], g.ext[1]};
-  const elastic::IntList cell = owned_;
-  const double kappa = kappa_, dv = g.cellVolume(), inv4mu = 1 / (4 * mu_);
-  // log10 of |S2| floored at (1e-6 mu_S)^2 (a strain of 1e-6), so that
-  // stress-free cells do not swamp a colour map with -infinity. The paper shades
-  // by "the magnitude of the logarithm"; S2 of a deviatoric stress can be negative.
-  const double floorS2 = (1e-6 * mu_) * (1e-6 * mu_);
   double e = 0, m = 0;
-  Kokkos::parallel_reduce(
-      "elastic_diagnose", Kokkos::RangePolicy<ExecSpace>(0, nOwned_),
-      KOKKOS_LAMBDA(int p, double& sum) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        const double xx = t.c[0](i, j, k), yy = t.c[1](i, j, k), zz = t.c[2](i, j, k);
-        const double xy = t.c[3](i, j, k), yz = t.c[4](i, j, k), zx = t.c[5](i, j, k);
-        const double s2 = elastic::secondInvariant(xx, yy, zz, xy, yz, zx);
-        S2(i, j, k) = s2;
-        const double a = std::fabs(s2);
-        lg(i, j, k) = std::log10(a > floorS2 ? a : floorS2);
-        const double H = smoothedHeaviside(psi(i, j, k), kappa);
-        sum += H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
-      },
-      e);
-  Kokkos::parallel_reduce(
-      "elastic_max_S2", Kokkos::RangePolicy<ExecSpace>(0, nOwned_),
-      KOKKOS_LAMBDA(int p, double& mx) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        const double a = psi(i, j, k) > 0 ? std::fabs(S2(i, j, k)) : 0.0; // inside the solid only
-        if (a > mx) mx = a;
-      },
-      Kokkos::Max<double>(m));
-  if (nOwned_ == 0) m = 0; // the Max reducer starts at the lowest double
+  elastic::stressDiagnostics(g, t, psi, S2, lg, owned_, nOwned_, kappa_, mu_, e, m);
   double glob[2];
   MPI_Allreduce(&e, &glob[0], 1, MPI_DOUBLE, MPI_SUM, g.comm);
   MPI_Allreduce(&m, &glob[1], 1, MPI_DOUBLE, MPI_MAX, g.comm);
