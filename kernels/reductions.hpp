@@ -70,6 +70,19 @@ inline long long countFullyFixed(const IntField& mask, Range3 nodes) {
   return n;
 }
 
+// Local max of the kinematic viscosity mu / rho over the range (the viscous dt limit).
+inline double maxKinematicViscosity(const Field& mu, const Field& rho, Range3 cells) {
+  double m = 0;
+  Kokkos::parallel_reduce(
+      "max_nu", cells.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+        const double nu = mu(i, j, k) / rho(i, j, k);
+        if (nu > acc) acc = nu;
+      },
+      Kokkos::Max<double>(m));
+  return m;
+}
+
 inline double globalSum(const Grid& g, double local) {
   double out = 0;
   MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_SUM, g.comm);

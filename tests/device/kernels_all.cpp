@@ -8,7 +8,8 @@
 //                                                  a GPU run against the Serial reference
 //   --config                                       print Kokkos's configuration first
 // The launcher list is checked at configure time (tests/device/launchers.cmake): a new
-// `inline` function in kernels/ must be called here.
+// `inline` function in kernels/ must be called here or in kernels_effects.cpp (the
+// effects' kernels); check.hpp holds what both share.
 #include <Kokkos_Core.hpp>
 #include <mpi.h>
 
@@ -29,61 +30,17 @@
 #include "kernels/extension.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/levelset.hpp"
-#include "kernels/momentum.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
 #include "kernels/reinit.hpp"
-#include "kernels/solid_body.hpp"
 #include "kernels/stress.hpp"
 
+#include "check.hpp"
+
 using namespace voigt;
+using namespace voigt::check;
 
 namespace {
-
-std::vector<std::pair<std::string, double>> gSums;
-void put(const std::string& name, double v) { gSums.emplace_back(name, v); }
-
-double sumAbs(const Field& f, Range3 r) {
-  double s = 0;
-  Kokkos::parallel_reduce(
-      "check_sum_abs", r.policy(),
-      KOKKOS_LAMBDA(int i, int j, int k, double& acc) { acc += Kokkos::Experimental::fabs(f(i, j, k)); }, s);
-  return s;
-}
-double sumAbs(const VecField& v, Range3 r) { return sumAbs(v.c[0], r) + sumAbs(v.c[1], r) + sumAbs(v.c[2], r); }
-double sumAbs(const SymTensorField& t, Range3 r) {
-  double s = 0;
-  for (int c = 0; c < 6; ++c) s += sumAbs(t.c[c], r);
-  return s;
-}
-double sumList(const IntList& l, int n) {
-  double s = 0;
-  Kokkos::parallel_reduce(
-      "check_sum_list", Kokkos::RangePolicy<ExecSpace>(0, n),
-      KOKKOS_LAMBDA(int q, double& acc) { acc += double(l(q)) * double(q % 7 + 1); }, s);
-  return s;
-}
-
-double sumBand(const reinit::BandViews& b, int n) {
-  double s = 0;
-  const auto sg = b.sgn, di = b.dist, co = b.coef;
-  Kokkos::parallel_reduce(
-      "check_sum_band", Kokkos::RangePolicy<ExecSpace>(0, n),
-      KOKKOS_LAMBDA(int q, double& acc) {
-        acc += Kokkos::Experimental::fabs(sg(q)) + Kokkos::Experimental::fabs(di(q)) + Kokkos::Experimental::fabs(co(q));
-      },
-      s);
-  return s;
-}
-
-struct Fields {
-  VecField u, u2, rhs, coef;
-  Field p, psi, rho, mu, q, o, rhsCell, div, dH, gm, psi1, psiT;
-  SymTensorField tau, tauS, tau2;
-};
-
-Field mk(const Grid& g, const char* name) { return Field(std::string(name), g.ext[0], g.ext[1], g.ext[2]); }
-
 // Smooth data over the whole array, ghosts included (no halo exchange needed): a sphere
 // of radius 0.3 for psi (> 0 inside), trigonometric velocity, density and viscosity.
 void fill(const Grid& g, Fields& f) {
@@ -185,82 +142,6 @@ void projectionStressReductions(const Grid& g, Fields& f) {
   put("countNonFinite", double(countNonFinite(f.p, cells)));
   put("globalSum", globalSum(g, 0.25));
   put("kineticEnergy", kineticEnergy(g, f.u, f.rho));
-}
-
-// The momentum predictor's stage updates (kernels/momentum.hpp): at three nodes of
-// four one component is prescribed (the mask bit cycles with i + j + k). Runs last:
-// it overwrites u2, rhs and div.
-void momentum(const Grid& g, Fields& f) {
-  const Range3 nodes = nodeRange(g), cells = cellRange(g);
-  const IntField mask("mask", g.ext[0], g.ext[1], g.ext[2]);
-  Kokkos::parallel_for(
-      "check_mask", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = 1 << ((i + j + k) % 4); });
-  const VecField u0{mk(g, "u0x"), mk(g, "u0y"), mk(g, "u0z")};
-  const Field r0 = mk(g, "r0"), r1 = mk(g, "r1");
-  nodeDensity(g, f.rho, r0, nodes);
-  put("nodeDensity", sumAbs(r0, nodes));
-  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.u2.c[c], f.u.c[c]);
-  momentumStage1(f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
-  put("momentumStage1", sumAbs(f.u2, nodes) + sumAbs(u0, nodes));
-  momentumStage2(f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
-  put("momentumStage2", sumAbs(f.u2, nodes));
-  momentumStage1Conservative(r0, f.q, r1, f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
-  put("momentumStage1Conservative", sumAbs(f.u2, nodes) + sumAbs(r1, nodes));
-  momentumStage2Conservative(r0, r1, f.q, f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
-  put("momentumStage2Conservative", sumAbs(f.u2, nodes));
-  initialVelocityRate(f.u2, f.u, f.q, r0, true, mask, nodes);
-  put("initialVelocityRate", sumAbs(f.u2, nodes));
-  poissonRhs(f.p, f.div, 2.0, cells);
-  addTo(f.q, f.div, cells); // div = q - p / 2
-  put("poissonRhs+addTo", sumAbs(f.div, cells));
-  projectionCoefficients(g, f.rho, mask, f.u2, nodes);
-  put("projectionCoefficients", sumAbs(f.u2, nodes));
-}
-
-// The solid_body effect's kernels: moments and gaps (a sphere target and a low x face)
-// of the psi > 0 sphere, and the bending of its mid-surface in the axis frame.
-void solidBody(const Grid& g, Fields& f) {
-  SolidTargets tg;
-  tg.n = 2;
-  tg.t[0].kind = 0, tg.t[0].r = 0.1, tg.t[0].c[0] = 0.5, tg.t[0].c[1] = 0.1, tg.t[0].c[2] = 0.3;
-  tg.t[1].kind = 3, tg.t[1].axis = 0, tg.t[1].c[0] = 0.0;
-  const double h = g.h[0];
-  const SolidAcc a = solidMoments(g, f.psi, f.u, 2 * h, 2 * h, h, tg);
-  double s = 0;
-  for (int q = 0; q < kSolidSums; ++q) s += std::fabs(a.s[q]);
-  put("solidMoments.sums", s);
-  put("solidMoments.gaps", a.m[0] + 10 * a.m[1]);
-  const int R = 10;
-  Kokkos::View<double* [4], MemSpace> bins("bins", (2 * R + 1) * (2 * R + 1));
-  const double c[3] = {0.5, 0.4, 0.3}, e[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
-  put("solidBending", solidBending(g, f.psi, 2 * h, h, R, bins, c, e));
-}
-
-// Small kernels of the effects (initial stress, band zeroing, gravity, the fixed-node
-// count). Runs after everything else: it overwrites tau2, u2, psi1 and q.
-void effectKernels(const Grid& g, Fields& f) {
-  const Range3 nodes = nodeRange(g), cells = cellRange(g);
-  const double a[6] = {1, 2, 3, 0.1, 0.2, 0.3};
-  elastic::initialStress(g, f.psi, f.tau2, a);
-  put("initialStress", sumAbs(f.tau2, cells));
-  const IntList prev("prev", size_t(g.cellsOwned()));
-  const int nPrev = elastic::buildActiveList(g, f.psi, -4 * g.h[0], cells, prev);
-  const Range3 box = elastic::listBox(g, prev, nPrev);
-  Kokkos::deep_copy(f.psi1, 1.0);
-  Kokkos::deep_copy(f.q, 1.0);
-  for (int c = 0; c < 6; ++c) Kokkos::deep_copy(f.tau2.c[c], 1.0);
-  elastic::zeroOutsideBand(g, f.psi, 0.05, f.tau2, box, true, prev, nPrev, f.psi1, f.q, -3.0);
-  put("zeroOutsideBand", sumAbs(f.tau2, cellRange(g, 1)) + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
-  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.u2.c[c], 0.5);
-  addBodyForce(f.u2, 0.1, -9.81, 0.2, nodes);
-  put("addBodyForce", sumAbs(f.u2, nodes));
-  const IntField mask("mask7", g.ext[0], g.ext[1], g.ext[2]);
-  Kokkos::parallel_for(
-      "check_mask7", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = (i + 2 * j + k) % 3 ? 7 : 3; });
-  put("countFullyFixed", double(countFullyFixed(mask, nodes)));
-  double energy = 0, maxS2 = 0;
-  elastic::stressDiagnostics(g, f.tauS, f.psi, f.psi1, f.q, prev, nPrev, 2 * g.h[0], 100.0, energy, maxS2);
-  put("stressDiagnostics", energy + maxS2 + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
 }
 
 void elasticity(const Grid& g, Fields& f) {
@@ -380,9 +261,7 @@ int main(int argc, char** argv) {
       projectionStressReductions(g, f);
       elasticity(g, f);
       reinitialisation(g, f);
-      solidBody(g, f);
-      momentum(g, f);
-      effectKernels(g, f);
+      check::effects(g, f); // kernels_effects.cpp
     }
     freeGrid(g);
     std::printf("voigt_kernels_all: Kokkos %s, %zu checksums\n", Kokkos::DefaultExecutionSpace::name(), gSums.size());

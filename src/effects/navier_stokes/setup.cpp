@@ -5,6 +5,7 @@
 
 #include "core/boundary.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
+#include "kernels/initial_flow.hpp"
 #include "kernels/reductions.hpp"
 #include "scene/reader.hpp"
 
@@ -84,37 +85,13 @@ void NavierStokes::initialVelocity(State& st) {
   const InitialCfg& ic = scene_->initial;
   VecField u = st.fields.vector("velocity");
   Field p = st.fields.scalar("pressure");
-  const int mode = ic.velocity == "uniform" ? 1 : ic.velocity == "taylor_green" ? 2
-                 : ic.velocity == "couette" ? 3 : ic.velocity == "poiseuille" ? 4 : 0;
-  const double A = ic.amplitude, rho = scene_->fluidMaterial().density, p0 = ic.pressure - pRef_;
-  const double U0 = ic.uniform[0], U1 = ic.uniform[1], U2 = ic.uniform[2];
-  const double kx = 2 * M_PI / (g.hi[0] - g.lo[0]), ky = 2 * M_PI / (g.hi[1] - g.lo[1]);
-  const double lo0 = g.lo[0], lo1 = g.lo[1], Ly = g.hi[1] - g.lo[1];
-  const double h0 = g.h[0], h1 = g.h[1];
-  const double wLo = scene_->bc[2].velocity[0], wHi = scene_->bc[3].velocity[0];
-  const int ng = g.ng, c00 = g.c0[0], c01 = g.c0[1];
-  Kokkos::parallel_for(
-      "initial_velocity", Policy3({0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        const double x = lo0 + (i - ng + c00) * h0, y = lo1 + (j - ng + c01) * h1;
-        const double xc = x + 0.5 * h0, yc = y + 0.5 * h1; // cell centre
-        double v[3] = {0, 0, 0}, pc = p0;
-        if (mode == 1) {
-          v[0] = U0; v[1] = U1; v[2] = U2;
-        } else if (mode == 2) { // Taylor-Green, exact Navier-Stokes solution in x-y
-          v[0] = A * std::sin(kx * (x - lo0)) * std::cos(ky * (y - lo1));
-          v[1] = -A * (kx / ky) * std::cos(kx * (x - lo0)) * std::sin(ky * (y - lo1));
-          pc += 0.25 * rho * A * A *
-                (std::cos(2 * kx * (xc - lo0)) + (kx * kx) / (ky * ky) * std::cos(2 * ky * (yc - lo1)));
-        } else if (mode == 3) {
-          v[0] = wLo + (wHi - wLo) * (y - lo1) / Ly;
-        } else if (mode == 4) {
-          v[0] = 4 * A * (y - lo1) * (Ly - (y - lo1)) / (Ly * Ly);
-        }
-        VOIGT_UNROLL
-        for (int c = 0; c < 3; ++c) u.c[c](i, j, k) = v[c];
-        p(i, j, k) = pc;
-      });
+  InitialFlow f;
+  f.mode = ic.velocity == "uniform" ? 1 : ic.velocity == "taylor_green" ? 2
+         : ic.velocity == "couette" ? 3 : ic.velocity == "poiseuille" ? 4 : 0;
+  f.A = ic.amplitude, f.rho = scene_->fluidMaterial().density, f.p0 = ic.pressure - pRef_;
+  for (int d = 0; d < 3; ++d) f.U[d] = ic.uniform[d];
+  f.wLo = scene_->bc[2].velocity[0], f.wHi = scene_->bc[3].velocity[0];
+  fillInitialFlow(g, f, u, p);
   applyFixed(st.fields.integer("fix_mask"), st.fields.vector("fix_value"), u,
              Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}});
 }
@@ -188,14 +165,7 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
   if (inv > 0) best = {scene_->time.cfl / inv, "advective CFL"};
   // Explicit viscous limit dt <= 1 / (2 nu sum 1/h^2) (NUMERICS.md, = h^2/(6 nu)).
   Field mu = st.fields.scalar("viscosity"), rho = st.fields.scalar("density");
-  double nuMax = 0;
-  Kokkos::parallel_reduce(
-      "max_nu", cellRange(g).policy(),
-      KOKKOS_LAMBDA(int i, int j, int k, double& m) {
-        const double nu = mu(i, j, k) / rho(i, j, k);
-        if (nu > m) m = nu;
-      },
-      Kokkos::Max<double>(nuMax));
+  const double nuMax = maxKinematicViscosity(mu, rho, cellRange(g));
   double nuG = nuMax;
   MPI_Allreduce(&nuMax, &nuG, 1, MPI_DOUBLE, MPI_MAX, g.comm);
   if (nuG > 0) {

@@ -1,0 +1,121 @@
+// Device check, second part (see kernels_all.cpp): the kernels of the momentum predictor
+// and of the effects (solid body, elastic set-up and diagnostics, gravity, obstacles,
+// initial and prescribed flows). Every call's result becomes a checksum (check.hpp).
+#include <cmath>
+#include <string>
+
+#include "kernels/elastic.hpp"
+#include "kernels/initial_flow.hpp"
+#include "kernels/momentum.hpp"
+#include "kernels/prescribed_flow.hpp"
+#include "kernels/projection_ops.hpp"
+#include "kernels/reductions.hpp"
+#include "kernels/solid_body.hpp"
+#include "check.hpp"
+
+namespace voigt {
+namespace check {
+namespace {
+
+// The momentum predictor's stage updates (kernels/momentum.hpp): at three nodes of
+// four one component is prescribed (the mask bit cycles with i + j + k). Runs last:
+// it overwrites u2, rhs and div.
+void momentum(const Grid& g, Fields& f) {
+  const Range3 nodes = nodeRange(g), cells = cellRange(g);
+  const IntField mask("mask", g.ext[0], g.ext[1], g.ext[2]);
+  Kokkos::parallel_for(
+      "check_mask", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = 1 << ((i + j + k) % 4); });
+  const VecField u0{mk(g, "u0x"), mk(g, "u0y"), mk(g, "u0z")};
+  const Field r0 = mk(g, "r0"), r1 = mk(g, "r1");
+  nodeDensity(g, f.rho, r0, nodes);
+  put("nodeDensity", sumAbs(r0, nodes));
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.u2.c[c], f.u.c[c]);
+  momentumStage1(f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage1", sumAbs(f.u2, nodes) + sumAbs(u0, nodes));
+  momentumStage2(f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage2", sumAbs(f.u2, nodes));
+  momentumStage1Conservative(r0, f.q, r1, f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage1Conservative", sumAbs(f.u2, nodes) + sumAbs(r1, nodes));
+  momentumStage2Conservative(r0, r1, f.q, f.u2, u0, f.rhs, 1e-2, mask, f.coef, nodes);
+  put("momentumStage2Conservative", sumAbs(f.u2, nodes));
+  initialVelocityRate(f.u2, f.u, f.q, r0, true, mask, nodes);
+  put("initialVelocityRate", sumAbs(f.u2, nodes));
+  poissonRhs(f.p, f.div, 2.0, cells);
+  addTo(f.q, f.div, cells); // div = q - p / 2
+  put("poissonRhs+addTo", sumAbs(f.div, cells));
+  projectionCoefficients(g, f.rho, mask, f.u2, nodes);
+  put("projectionCoefficients", sumAbs(f.u2, nodes));
+}
+
+// The solid_body effect's kernels: moments and gaps (a sphere target and a low x face)
+// of the psi > 0 sphere, and the bending of its mid-surface in the axis frame.
+void solidBody(const Grid& g, Fields& f) {
+  SolidTargets tg;
+  tg.n = 2;
+  tg.t[0].kind = 0, tg.t[0].r = 0.1, tg.t[0].c[0] = 0.5, tg.t[0].c[1] = 0.1, tg.t[0].c[2] = 0.3;
+  tg.t[1].kind = 3, tg.t[1].axis = 0, tg.t[1].c[0] = 0.0;
+  const double h = g.h[0];
+  const SolidAcc a = solidMoments(g, f.psi, f.u, 2 * h, 2 * h, h, tg);
+  double s = 0;
+  for (int q = 0; q < kSolidSums; ++q) s += std::fabs(a.s[q]);
+  put("solidMoments.sums", s);
+  put("solidMoments.gaps", a.m[0] + 10 * a.m[1]);
+  const int R = 10;
+  Kokkos::View<double* [4], MemSpace> bins("bins", (2 * R + 1) * (2 * R + 1));
+  const double c[3] = {0.5, 0.4, 0.3}, e[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
+  put("solidBending", solidBending(g, f.psi, 2 * h, h, R, bins, c, e));
+}
+
+// Small kernels of the effects (initial stress, band zeroing, gravity, the fixed-node
+// count). Runs after everything else: it overwrites tau2, u2, psi1 and q.
+void effectKernels(const Grid& g, Fields& f) {
+  const Range3 nodes = nodeRange(g), cells = cellRange(g);
+  const double a[6] = {1, 2, 3, 0.1, 0.2, 0.3};
+  elastic::initialStress(g, f.psi, f.tau2, a);
+  put("initialStress", sumAbs(f.tau2, cells));
+  const IntList prev("prev", size_t(g.cellsOwned()));
+  const int nPrev = elastic::buildActiveList(g, f.psi, -4 * g.h[0], cells, prev);
+  const Range3 box = elastic::listBox(g, prev, nPrev);
+  Kokkos::deep_copy(f.psi1, 1.0);
+  Kokkos::deep_copy(f.q, 1.0);
+  for (int c = 0; c < 6; ++c) Kokkos::deep_copy(f.tau2.c[c], 1.0);
+  elastic::zeroOutsideBand(g, f.psi, 0.05, f.tau2, box, true, prev, nPrev, f.psi1, f.q, -3.0);
+  put("zeroOutsideBand", sumAbs(f.tau2, cellRange(g, 1)) + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.u2.c[c], 0.5);
+  addBodyForce(f.u2, 0.1, -9.81, 0.2, nodes);
+  put("addBodyForce", sumAbs(f.u2, nodes));
+  const IntField mask("mask7", g.ext[0], g.ext[1], g.ext[2]);
+  Kokkos::parallel_for(
+      "check_mask7", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = (i + 2 * j + k) % 3 ? 7 : 3; });
+  put("countFullyFixed", double(countFullyFixed(mask, nodes)));
+  double energy = 0, maxS2 = 0;
+  elastic::stressDiagnostics(g, f.tauS, f.psi, f.psi1, f.q, prev, nPrev, 2 * g.h[0], 100.0, energy, maxS2);
+  put("stressDiagnostics", energy + maxS2 + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
+  put("maxKinematicViscosity", maxKinematicViscosity(f.mu, f.rho, cells));
+  for (int mode = 1; mode <= 4; ++mode) { // every closed-form initial flow
+    InitialFlow init;
+    init.mode = mode, init.A = 0.7, init.rho = 2.0, init.p0 = 0.1, init.U[0] = 0.3, init.U[1] = -0.2;
+    init.U[2] = 0.1, init.wLo = -0.5, init.wHi = 1.0;
+    fillInitialFlow(g, init, f.u2, f.psi1);
+    put("fillInitialFlow." + std::to_string(mode), sumAbs(f.u2, nodes) + sumAbs(f.psi1, cells));
+  }
+  for (int type = 0; type <= 2; ++type) { // rotation, single vortex, uniform
+    FlowParams fp;
+    fp.type = type, fp.c[0] = 0.5, fp.c[1] = 0.4, fp.w[2] = 2.0, fp.w[0] = 0.5, fp.v[0] = 0.3, fp.v[2] = -0.1;
+    fp.period = 8, fp.len[0] = 1, fp.len[1] = 0.8;
+    fillPrescribedFlow(g, fp, 1.3, f.u2);
+    put("fillPrescribedFlow." + std::to_string(type), sumAbs(f.u2, nodes));
+    put("prescribedFlowRate." + std::to_string(type), prescribedFlowRate(g, fp));
+  }
+}
+
+} // namespace
+
+void effects(const Grid& g, Fields& f) {
+  solidBody(g, f);
+  momentum(g, f);
+  effectKernels(g, f);
+}
+
+} // namespace check
+} // namespace voigt
