@@ -52,10 +52,11 @@ def main():
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "LABEL"), required=True)
     ap.add_argument("--title", default="")
     ap.add_argument("-o", "--output", required=True)
+    ap.add_argument("--csv", help="also write one row per finished run (results_row) to this CSV")
     a = ap.parse_args()
     fig, ax = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     ax = ax.ravel()
-    rows, states, evs, h = [], [], [], None
+    rows, states, evs, h, results = [], [], [], None, []
     for n, (d, label) in enumerate(a.run):
         cols, summ = load(d)
         c = "C%d" % n
@@ -84,6 +85,8 @@ def main():
         states.append((label, state_rows(cols, cell)))
         if cell:
             evs.append((label, events(cols, cell)))
+        if summ:
+            results.append(results_row(d, cols, summ))
     if h:
         ax[3].axhline(1000 * h, color="k", lw=0.8, ls=":", label="contact gap (1 cell)")
     ax[0].set_ylabel("centroid height (mm)")
@@ -116,6 +119,9 @@ def main():
     for label, srows in states:
         for r in srows:
             print("| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f |" % ((label,) + r))
+    if a.csv:
+        series.write_csv(a.csv, results)
+        print("plots.py: %d finished run(s) in %s" % (len(results), a.csv))
     if evs:
         print()
         print("| event | " + " | ".join(label for label, _ in evs) + " |")
@@ -188,6 +194,36 @@ EVENT_NAMES = ("mean vy stops falling (s; vy m/s)", "smallest gap to the cylinde
                "first bending peak after the impact (mm, at s)",
                "slowing to peak bending (ms)", "base: gap < 2 h from (s)", "peak tilt (deg, at s)",
                "largest energy ratio (at s)", "energy ratio, volume change at the end (t s)")
+
+
+def results_row(d, cols, summ):
+    """Issue 22's falling-block table: one finished run (its directory and summary.json)."""
+    cont = summ.get("solid_body", {}).get("contacts", {})
+    ts, pe0 = cols["t"], cols["solid_potential_energy"][0]
+    ratio = [(k + e) / (pe0 - p) if pe0 - p > 0 else 0.0
+             for k, e, p in zip(cols["kinetic_energy"], cols["elastic_energy"], cols["solid_potential_energy"])]
+    late = [r for t, r in zip(ts, ratio) if t >= 0.03]  # as events(): before, the released energy is ~0
+    fmt = lambda v, f="%.4f": "" if v is None else f % v  # noqa: E731
+    el, ls = summ.get("elasticity", {}), summ.get("level_set", {})
+    sharp0 = ls.get("sharp_volume_initial")
+    return {
+        "run_id": os.path.basename(os.path.normpath(d)),
+        "mu_S": fmt(el.get("shear_modulus"), "%g"),
+        "model": el.get("fluid_side", ""),
+        "volume_correction": ls.get("volume_correction", "none"),
+        "grid": "x".join(str(n) for n in summ["grid"]["cells"]),
+        "ranks": summ["grid"]["ranks"],
+        "t_end": fmt(summ["simulated_time"]),
+        "steps": summ["steps"],
+        "wall_s": fmt(summ["wall_seconds_total"], "%.0f"),
+        "first_impact_s": fmt(cont.get("obstacle0", {}).get("first_contact_time")),
+        "base_impact_s": fmt(cont.get("y-", {}).get("first_contact_time")),
+        "peak_bending_mm": fmt(1000 * max(cols["solid_bending"]), "%.2f"),
+        "max_energy_ratio": fmt(max(late) if late else None, "%.3f"),
+        # The smoothed volume (what the global correction holds) and the sharp one (psi > 0).
+        "volume_change_pct": fmt(100 * cols["volume_drift"][-1], "%.2f"),
+        "sharp_volume_change_pct": fmt(100 * (ls["sharp_volume"] / sharp0 - 1) if sharp0 else None, "%.2f"),
+    }
 
 
 def events(cols, h):
