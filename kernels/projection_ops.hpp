@@ -134,6 +134,12 @@ inline void poissonRhs(const Field& div, const Field& rhs, double dt, Range3 cel
   for_each3("poisson_rhs", cells, KOKKOS_LAMBDA(int i, int j, int k) { rhs(i, j, k) = -div(i, j, k) / dt; });
 }
 
+// dst = src + c over the whole array, ghosts included (output: the pressure with its reference).
+inline void shiftedCopy(const Field& src, const Field& dst, double c) {
+  for_each3("shifted_copy", Range3{{0, 0, 0}, {int(src.extent(0)), int(src.extent(1)), int(src.extent(2))}},
+            KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = src(i, j, k) + c; });
+}
+
 // dst += src (the pressure update p += dp).
 inline void addTo(const Field& src, const Field& dst, Range3 cells) {
   for_each3("add_to", cells, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) += src(i, j, k); });

@@ -2,6 +2,9 @@
 // Global reductions over owned index ranges (Kokkos reduce + MPI_Allreduce).
 #include <mpi.h>
 
+#include <climits>
+#include <cmath>
+
 #include "core/field.hpp"
 #include "core/index_space.hpp"
 #include "kernels/projection_ops.hpp"
@@ -81,6 +84,63 @@ inline double maxKinematicViscosity(const Field& mu, const Field& rho, Range3 ce
       },
       Kokkos::Max<double>(m));
   return m;
+}
+
+// The global linear index (i + nx (j + ny k), nx = n0 + 1, ny = n1 + 1: the node numbering,
+// which also orders cells) of the first non-finite value of f in r on this rank, in
+// (k, j, i) order, or LLONG_MAX: the same point whatever the decomposition.
+inline long long firstNonFinite(const Grid& g, const Field& f, Range3 r) {
+  const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
+  const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
+  long long first = LLONG_MAX;
+  Kokkos::parallel_reduce(
+      "find_non_finite", r.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, long long& m) {
+        const double v = f(i, j, k);
+        if (!(v - v == 0)) { // NaN or +-Inf
+          const long long lin = (i - ng + c0) + nx * ((j - ng + c1) + ny * (long long)(k - ng + c2));
+          if (lin < m) m = lin;
+        }
+      },
+      Kokkos::Min<long long>(first));
+  return first;
+}
+
+// The advective rate sum_d |u_d| / h_d at a node.
+KOKKOS_INLINE_FUNCTION double nodeRate(const VecField& u, double ih0, double ih1, double ih2, int i, int j, int k) {
+  return std::fabs(u.c[0](i, j, k)) * ih0 + std::fabs(u.c[1](i, j, k)) * ih1 + std::fabs(u.c[2](i, j, k)) * ih2;
+}
+
+// Local max of nodeRate over r (the fastest node, for a dt-collapse message).
+inline double maxNodeRate(const Grid& g, const VecField& u, Range3 r) {
+  const double ih0 = 1 / g.h[0], ih1 = 1 / g.h[1], ih2 = 1 / g.h[2];
+  double m = 0;
+  Kokkos::parallel_reduce(
+      "fastest_node_max", r.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+        const double s = nodeRate(u, ih0, ih1, ih2, i, j, k);
+        if (s > acc) acc = s;
+      },
+      Kokkos::Max<double>(m));
+  return m;
+}
+
+// First node of r (global linear index as firstNonFinite) where nodeRate equals rate, or LLONG_MAX.
+inline long long firstNodeWithRate(const Grid& g, const VecField& u, Range3 r, double rate) {
+  const double ih0 = 1 / g.h[0], ih1 = 1 / g.h[1], ih2 = 1 / g.h[2];
+  const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
+  const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
+  long long first = LLONG_MAX;
+  Kokkos::parallel_reduce(
+      "fastest_node_where", r.policy(),
+      KOKKOS_LAMBDA(int i, int j, int k, long long& acc) {
+        if (nodeRate(u, ih0, ih1, ih2, i, j, k) == rate) {
+          const long long lin = (i - ng + c0) + nx * ((j - ng + c1) + ny * (long long)(k - ng + c2));
+          if (lin < acc) acc = lin;
+        }
+      },
+      Kokkos::Min<long long>(first));
+  return first;
 }
 
 inline double globalSum(const Grid& g, double local) {

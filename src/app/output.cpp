@@ -42,9 +42,7 @@ std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& na
       if (n == "pressure") {
         const double ref = st.diag.count("pressure_reference") ? st.diag.at("pressure_reference") : 0.0;
         Field c("pressure_out", s.extent(0), s.extent(1), s.extent(2));
-        Kokkos::parallel_for(
-            "pressure_out", Policy3({0, 0, 0}, {(int)s.extent(0), (int)s.extent(1), (int)s.extent(2)}),
-            KOKKOS_LAMBDA(int i, int j, int k) { c(i, j, k) = s(i, j, k) + ref; });
+        shiftedCopy(s, c, ref);
         s = c;
       }
       st.halo->exchange(s);

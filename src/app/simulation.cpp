@@ -211,20 +211,9 @@ void Simulation::checkFinite() {
     const Range3 r = d.centring == Centring::Cell ? cellRange(g) : nodeRange(g);
     // First non-finite point in global (k, j, i) order: the same cell whatever the decomposition.
     const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
-    const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
     for (int c = 0; c < int(comps.size()); ++c) {
       const Field f = comps[c];
-      long long first = LLONG_MAX;
-      Kokkos::parallel_reduce(
-          "find_non_finite", r.policy(),
-          KOKKOS_LAMBDA(int i, int j, int k, long long& m) {
-            const double v = f(i, j, k);
-            if (!(v - v == 0)) { // NaN or +-Inf
-              const long long lin = (i - ng + c0) + nx * ((j - ng + c1) + ny * (long long)(k - ng + c2));
-              if (lin < m) m = lin;
-            }
-          },
-          Kokkos::Min<long long>(first));
+      const long long first = firstNonFinite(g, f, r);
       long long gfirst = first;
       MPI_Allreduce(&first, &gfirst, 1, MPI_LONG_LONG, MPI_MIN, g.comm);
       if (gfirst == LLONG_MAX) continue;
@@ -260,32 +249,12 @@ std::string Simulation::fastestNode() const {
   const Grid& g = st_.grid;
   const VecField u = st_.fields.vector("velocity");
   const Range3 r = nodeRange(g);
-  const double ih0 = 1 / g.h[0], ih1 = 1 / g.h[1], ih2 = 1 / g.h[2];
-  auto speed = KOKKOS_LAMBDA(int i, int j, int k) {
-    return std::fabs(u.c[0](i, j, k)) * ih0 + std::fabs(u.c[1](i, j, k)) * ih1 + std::fabs(u.c[2](i, j, k)) * ih2;
-  };
-  double m = 0;
-  Kokkos::parallel_reduce(
-      "fastest_node_max", r.policy(),
-      KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
-        const double s = speed(i, j, k);
-        if (s > acc) acc = s;
-      },
-      Kokkos::Max<double>(m));
+  const double m = maxNodeRate(g, u, r);
   double gm = m;
   MPI_Allreduce(&m, &gm, 1, MPI_DOUBLE, MPI_MAX, g.comm);
-  const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
-  const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
-  long long first = LLONG_MAX;
-  Kokkos::parallel_reduce(
-      "fastest_node_where", r.policy(),
-      KOKKOS_LAMBDA(int i, int j, int k, long long& acc) {
-        if (speed(i, j, k) == gm) {
-          const long long lin = (i - ng + c0) + nx * ((j - ng + c1) + ny * (long long)(k - ng + c2));
-          if (lin < acc) acc = lin;
-        }
-      },
-      Kokkos::Min<long long>(first));
+  const long long nx = g.n[0] + 1;
+  const long long ny = g.n[1] + 1;
+  const long long first = firstNodeWithRate(g, u, r, gm);
   long long gfirst = first;
   MPI_Allreduce(&first, &gfirst, 1, MPI_LONG_LONG, MPI_MIN, g.comm);
   if (gfirst == LLONG_MAX) return "";

@@ -111,10 +111,27 @@ void effectKernels(const Grid& g, Fields& f) {
 
 } // namespace
 
+// The blow-up and dt-collapse diagnostics of the app (first non-finite point, fastest
+// node) and the output's shifted copy.
+void diagnostics(const Grid& g, Fields& f) {
+  const Range3 nodes = nodeRange(g), cells = cellRange(g);
+  Kokkos::deep_copy(f.psi1, 1.0);
+  const Field p1 = f.psi1;
+  Kokkos::parallel_for(
+      "check_nan", Range3{{5, 4, 3}, {7, 6, 5}}.policy(), KOKKOS_LAMBDA(int i, int j, int k) { p1(i, j, k) = NAN; });
+  put("firstNonFinite", double(firstNonFinite(g, f.psi1, cells)));
+  const double m = maxNodeRate(g, f.u, nodes);
+  put("maxNodeRate", m);
+  put("firstNodeWithRate", double(firstNodeWithRate(g, f.u, nodes, m)));
+  shiftedCopy(f.p, f.psi1, 0.25);
+  put("shiftedCopy", sumAbs(f.psi1, cells));
+}
+
 void effects(const Grid& g, Fields& f) {
   solidBody(g, f);
   momentum(g, f);
   effectKernels(g, f);
+  diagnostics(g, f);
 }
 
 } // namespace check
