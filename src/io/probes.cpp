@@ -136,24 +136,13 @@ void ProbeSet::sample(double t, const std::vector<OutField>& available, bool for
 
     // Sample owned points on the execution space: one column per component.
     const int nl = int(s.local.size());
-    Kokkos::View<double**, Kokkos::LayoutRight, MemSpace> res("probe::res", nl, ncols);
+    ProbeValues res("probe::res", nl, ncols);
     const auto idx = s.idx;
     const auto w = s.w;
     int col = 0;
     for (const OutField* f : fs) {
       const int o = f->centring == Centring::Node ? 0 : 3;
-      for (const Field& v : f->comps) {
-        const int c = col++;
-        Kokkos::parallel_for("probe::sample", Kokkos::RangePolicy<ExecSpace>(0, nl), KOKKOS_LAMBDA(int q) {
-          const int i = idx(q, o), j = idx(q, o + 1), k = idx(q, o + 2);
-          const int si = o ? idx(q, 6) : 1, sj = o ? idx(q, 7) : 1, sk = o ? idx(q, 8) : 1;
-          const double wx = w(q, o), wy = w(q, o + 1), wz = w(q, o + 2);
-          auto lx = [&](int jj, int kk) { return (1 - wx) * v(i, jj, kk) + wx * v(i + si, jj, kk); };
-          const double z0 = (1 - wy) * lx(j, k) + wy * lx(j + sj, k);
-          const double z1 = (1 - wy) * lx(j, k + sk) + wy * lx(j + sj, k + sk);
-          res(q, c) = (1 - wz) * z0 + wz * z1;
-        });
-      }
+      for (const Field& v : f->comps) sampleProbes(v, idx, w, o, nl, res, col++);
     }
     auto hres = Kokkos::create_mirror_view(res);
     Kokkos::deep_copy(hres, res);

@@ -2,6 +2,7 @@
 // Point and line probes: trilinear samples of output fields appended to
 // DIR/probe_<name>.csv by rank 0.
 #include "io/fields_out.hpp"
+#include "kernels/probes.hpp"
 #include "scene/scene.hpp"
 
 #include <fstream>
@@ -25,8 +26,8 @@ class ProbeSet {
  private:
   // Per-axis stencil of one point: base local index and weight of index+1,
   // for node and cell interpolation. Kept on the device for the kernels.
-  using IdxView = Kokkos::View<int* [9], MemSpace>;
-  using WView = Kokkos::View<double* [6], MemSpace>;
+  using IdxView = ProbeIdx;     // kernels/probes.hpp
+  using WView = ProbeWeights;
   struct State {
     Probe probe;
     std::vector<Vec3> pts;   // all points of the probe (global)

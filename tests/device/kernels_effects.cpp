@@ -8,6 +8,7 @@
 #include "kernels/initial_flow.hpp"
 #include "kernels/momentum.hpp"
 #include "kernels/prescribed_flow.hpp"
+#include "kernels/probes.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
 #include "kernels/solid_body.hpp"
@@ -125,6 +126,19 @@ void diagnostics(const Grid& g, Fields& f) {
   put("firstNodeWithRate", double(firstNodeWithRate(g, f.u, nodes, m)));
   shiftedCopy(f.p, f.psi1, 0.25);
   put("shiftedCopy", sumAbs(f.psi1, cells));
+  // Two probe points: node and cell stencils, the second cell one-sided (step 0 in z).
+  ProbeIdx idx("idx", 2);
+  ProbeWeights w("w", 2);
+  ProbeValues res("res", 2, 2);
+  Kokkos::parallel_for(
+      "check_probe_setup", Kokkos::RangePolicy<ExecSpace>(0, 2), KOKKOS_LAMBDA(int q) {
+        for (int a = 0; a < 3; ++a) idx(q, a) = 4 + q + a, idx(q, 3 + a) = 5 + a, idx(q, 6 + a) = a < 2 ? 1 : q;
+        for (int a = 0; a < 6; ++a) w(q, a) = 0.1 * (a + 1) + 0.05 * q;
+      });
+  sampleProbes(f.u.c[1], idx, w, 0, 2, res, 0);
+  sampleProbes(f.p, idx, w, 3, 2, res, 1);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), res);
+  put("sampleProbes", std::fabs(h(0, 0)) + std::fabs(h(1, 0)) + std::fabs(h(0, 1)) + std::fabs(h(1, 1)));
 }
 
 void effects(const Grid& g, Fields& f) {
