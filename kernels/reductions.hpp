@@ -86,21 +86,28 @@ inline double maxKinematicViscosity(const Field& mu, const Field& rho, Range3 ce
   return m;
 }
 
-// The global linear index (i + nx (j + ny k), nx = n0 + 1, ny = n1 + 1: the node numbering,
-// which also orders cells) of the first non-finite value of f in r on this rank, in
-// (k, j, i) order, or LLONG_MAX: the same point whatever the decomposition.
+// Global linear index of local (i, j, k): i + nx (j + ny k) in global indices, nx = n0 + 1,
+// ny = n1 + 1 (the node numbering, which also orders cells): the same point, and the same
+// (k, j, i) order, whatever the decomposition.
+struct GlobalLinear {
+  long long nx, ny;
+  int ng, c0, c1, c2;
+  explicit GlobalLinear(const Grid& g)
+      : nx(g.n[0] + 1), ny(g.n[1] + 1), ng(g.ng), c0(g.c0[0]), c1(g.c0[1]), c2(g.c0[2]) {}
+  KOKKOS_INLINE_FUNCTION long long operator()(int i, int j, int k) const {
+    return (i - ng + c0) + nx * ((j - ng + c1) + ny * (long long)(k - ng + c2));
+  }
+};
+
+// GlobalLinear index of the first non-finite value of f in r on this rank, or LLONG_MAX.
 inline long long firstNonFinite(const Grid& g, const Field& f, Range3 r) {
-  const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
-  const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
+  const GlobalLinear lin(g);
   long long first = LLONG_MAX;
   Kokkos::parallel_reduce(
       "find_non_finite", r.policy(),
       KOKKOS_LAMBDA(int i, int j, int k, long long& m) {
         const double v = f(i, j, k);
-        if (!(v - v == 0)) { // NaN or +-Inf
-          const long long lin = (i - ng + c0) + nx * ((j - ng + c1) + ny * (long long)(k - ng + c2));
-          if (lin < m) m = lin;
-        }
+        if (!(v - v == 0) && lin(i, j, k) < m) m = lin(i, j, k); // NaN or +-Inf
       },
       Kokkos::Min<long long>(first));
   return first;
@@ -125,19 +132,15 @@ inline double maxNodeRate(const Grid& g, const VecField& u, Range3 r) {
   return m;
 }
 
-// First node of r (global linear index as firstNonFinite) where nodeRate equals rate, or LLONG_MAX.
+// GlobalLinear index of the first node of r where nodeRate equals rate, or LLONG_MAX.
 inline long long firstNodeWithRate(const Grid& g, const VecField& u, Range3 r, double rate) {
   const double ih0 = 1 / g.h[0], ih1 = 1 / g.h[1], ih2 = 1 / g.h[2];
-  const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
-  const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
+  const GlobalLinear lin(g);
   long long first = LLONG_MAX;
   Kokkos::parallel_reduce(
       "fastest_node_where", r.policy(),
       KOKKOS_LAMBDA(int i, int j, int k, long long& acc) {
-        if (nodeRate(u, ih0, ih1, ih2, i, j, k) == rate) {
-          const long long lin = (i - ng + c0) + nx * ((j - ng + c1) + ny * (long long)(k - ng + c2));
-          if (lin < acc) acc = lin;
-        }
+        if (nodeRate(u, ih0, ih1, ih2, i, j, k) == rate && lin(i, j, k) < acc) acc = lin(i, j, k);
       },
       Kokkos::Min<long long>(first));
   return first;
