@@ -11,10 +11,7 @@
 namespace voigt::perf {
 
 inline Scene scene(const std::string& yaml) {
-  LoadOptions lo;
-  lo.knownEffects = knownEffectNames();
-  lo.extraSections = effectSections();
-  return loadSceneFromString(yaml, "perf", lo);
+  return loadSceneWithEffectsFromString(yaml, "perf");
 }
 
 // Lid-driven cavity at Re = 100 on n^3 cells.

@@ -40,7 +40,7 @@ std::vector<Solve> runSteps(const Scene& s, int M, bool zeroCold, std::vector<do
   std::vector<Solve> out;
   const bool replay = !dts.empty();
   for (int m = 1; m <= M; ++m) {
-    double dt = replay ? dts[m - 1] : sim.stableDt().dt;
+    double dt = replay ? dts[m - 1] : sim.engine().chooseDt(s.time.endTime); // the run's dt rule
     if (!std::isfinite(dt)) dt = 1e-3;
     if (!replay) dts.push_back(dt);
     if (zeroCold && m == M) Kokkos::deep_copy(sim.state().fields.scalar("pressure_increment"), 0.0);

@@ -66,12 +66,11 @@ Estimate estimateRun(const Scene& scene, MPI_Comm comm, double tEnd, long maxSte
   e.fixedDt = tc.dt > 0;
   e.dtSetup = lim0.dt;
   e.dtReason = lim0.reason;
-  // The dt a step takes, as Simulation::chooseDt picks it (without the clip to outputs).
-  auto stepDt = [&](const DtLimit& l) {
-    if (tc.dt > 0) return tc.dt;
-    const double dt = std::min(l.dt, tc.maxDt);
-    return std::isfinite(dt) ? dt : tEnd;
-  };
+  // The dt a step takes, by the engine's rule (StepEngine::chooseDt) without the clip to
+  // outputs and the end: the calibration runs past neither.
+  const StepEngine& engine = sim.engine();
+  const double st0 = sim.state().t;
+  auto stepDt = [&](const DtLimit& l) { return engine.rule(l, tEnd - st0).dt; };
   // One warm-up step (first solver set-up, first touch of memory), then the timed ones.
   sim.advance(stepDt(lim0));
   Kokkos::fence();

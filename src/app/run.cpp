@@ -167,14 +167,14 @@ RunResult Simulation::run() {
     if (flags[2] && lastCheckpointStep_ != st_.step) r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
     else if (flags[2]) lastCheckpointWall_ = MPI_Wtime(); // restarted from this very step
     const double stepStart = MPI_Wtime();
-    const double dt = chooseDt(tEnd, scene_.output.interval > 0 ? nextOutput_ : tEnd);
+    const double dt = engine_.chooseDt(tEnd, scene_.output.interval > 0 ? nextOutput_ : tEnd);
     if (!std::isfinite(dt) || dt <= 0 || (dt < scene_.time.minDt && dt < tEnd - st_.t)) {
       std::ostringstream os;
       os << "blow-up: time step collapsed to " << dt << " (time.min_dt = " << scene_.time.minDt << ") at step "
          << st_.step << ", t = " << st_.t << ", limited by " << st_.dtReason << fastestNode();
       blowUp(os.str(), true);
     }
-    dtReasons_[st_.dtReason.substr(0, st_.dtReason.find(" ("))] += 1;
+    dtReasons_[StepEngine::unclipped(st_.dtReason)] += 1;
     snapshot();
     try {
       advance(dt);

@@ -63,7 +63,7 @@ void checkSceneAgainstFields(const Scene& sc, const State& st, bool backup) {
 } // namespace
 
 Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt)
-    : scene_(scene), sceneYaml_(YAML::Dump(scene_.root)), opt_(opt) {
+    : scene_(scene), sceneYaml_(YAML::Dump(scene_.root)), opt_(opt), engine_(st_, pipeline_, scene_.time) {
   st_.scene = &scene_;
   std::array<bool, 3> per{scene_.periodic(0), scene_.periodic(1), scene_.periodic(2)};
   try {
@@ -77,6 +77,11 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt)
   effects_ = makeEffects(scene_);
   for (auto& e : effects_) e->declareFields(st_.fields);
   for (auto& e : effects_) e->registerTasks(pipeline_);
+  for (auto& e : effects_) engine_.addLimit([eff = e.get()](const State& st) { return eff->dtLimit(st); });
+  engine_.addAfterStep([](State& st) {
+    if (st.fields.allocated("density")) // kinematic scenes (prescribed_flow) carry no mass
+      st.diag["kinetic_energy"] = kineticEnergy(st.grid, st.fields.vector("velocity"), st.fields.scalar("density"));
+  });
   const Section c = topSection(scene_, "checkpoint");
   ck_.interval = c.integer("interval", ck_.interval, 0, 1000000000L);
   ck_.wallInterval = c.number("wall_interval", ck_.wallInterval, Range::nonNegative());
@@ -123,43 +128,7 @@ std::string Simulation::describe() const {
 
 DtLimit Simulation::stableDt() const {
   if (!initialized_) throw std::logic_error("Simulation::stableDt before initialize()");
-  DtLimit best;
-  for (auto& e : effects_) {
-    DtLimit l = e->dtLimit(st_);
-    if (l.dt < best.dt) best = l;
-  }
-  return best;
-}
-
-double Simulation::chooseDt(double tEnd, double tNextOut) {
-  const TimeCfg& tc = scene_.time;
-  DtLimit lim = stableDt();
-  double dt;
-  if (tc.dt > 0) {
-    dt = tc.dt;
-    st_.dtReason = "fixed";
-  } else {
-    dt = lim.dt;
-    st_.dtReason = lim.reason;
-    if (tc.maxDt < dt) {
-      dt = tc.maxDt;
-      st_.dtReason = "max_dt";
-    }
-    if (!std::isfinite(dt)) {
-      dt = tc.maxDt < 1e300 ? tc.maxDt : (tEnd - st_.t);
-      st_.dtReason = "nothing moves";
-    }
-  }
-  // Land exactly on outputs and the end (1e-9 relative slack avoids a sliver step).
-  bool clipped = false;
-  for (double target : {tNextOut, tEnd}) {
-    if (target > st_.t && st_.t + dt * (1 + 1e-9) >= target) {
-      dt = target - st_.t;
-      clipped = true;
-    }
-  }
-  if (clipped) st_.dtReason += " (clipped to output/end)";
-  return dt;
+  return engine_.stableDt();
 }
 
 void Simulation::initialize() {
@@ -177,70 +146,12 @@ void Simulation::initialize() {
 
 void Simulation::advance(double dt) {
   initialize();
-  st_.dt = dt;
-  for (Stage s : kStepStages) pipeline_.run(s, st_);
-  st_.t += st_.dt;
-  st_.step += 1;
-  checkFinite();
-  if (!st_.stopRequest.empty()) throw BlowUp("stopped: " + st_.stopRequest);
-  if (st_.fields.allocated("density")) // kinematic scenes (prescribed_flow) carry no mass
-    st_.diag["kinetic_energy"] = kineticEnergy(st_.grid, st_.fields.vector("velocity"), st_.fields.scalar("density"));
+  engine_.advance(dt);
 }
 
-void Simulation::checkFinite() {
-  const Grid& g = st_.grid;
-  // Fast path, every step: one count over all fields and one Allreduce. Only a
-  // blow-up pays for the search below (a reduction and Allreduces per field).
-  long long local = 0, total = 0;
-  for (auto& name : st_.fields.allocatedNames()) {
-    auto d = st_.fields.decls().at(name);
-    if (d.isInt) continue;
-    const Range3 r = d.centring == Centring::Cell ? cellRange(g) : nodeRange(g);
-    if (d.components == 1) local += countNonFinite(st_.fields.scalar(name), r);
-    else for (int c = 0; c < 3; ++c) local += countNonFinite(st_.fields.vector(name).c[c], r);
-  }
-  MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
-  if (total == 0) return;
-  std::vector<std::string> bad; // every non-finite field component, with its first point
-  for (auto& name : st_.fields.allocatedNames()) {
-    auto d = st_.fields.decls().at(name);
-    if (d.isInt) continue;
-    std::vector<Field> comps;
-    if (d.components == 1) comps.push_back(st_.fields.scalar(name));
-    else for (int c = 0; c < 3; ++c) comps.push_back(st_.fields.vector(name).c[c]);
-    const Range3 r = d.centring == Centring::Cell ? cellRange(g) : nodeRange(g);
-    // First non-finite point in global (k, j, i) order: the same cell whatever the decomposition.
-    const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
-    for (int c = 0; c < int(comps.size()); ++c) {
-      const Field f = comps[c];
-      const long long first = firstNonFinite(g, f, r);
-      long long gfirst = first;
-      MPI_Allreduce(&first, &gfirst, 1, MPI_LONG_LONG, MPI_MIN, g.comm);
-      if (gfirst == LLONG_MAX) continue;
-      const int gi = int(gfirst % nx), gj = int((gfirst / nx) % ny), gk = int(gfirst / (nx * ny));
-      double v = 0;
-      if (first == gfirst) {
-        auto h = Kokkos::create_mirror_view_and_copy(
-            Kokkos::HostSpace(), Kokkos::subview(f, g.local(0, gi), g.local(1, gj), g.local(2, gk)));
-        v = h();
-      }
-      int mine = first == gfirst ? g.rank : g.size, owner = 0;
-      MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, g.comm);
-      MPI_Bcast(&v, 1, MPI_DOUBLE, owner, g.comm);
-      std::ostringstream os;
-      os << "field '" << name << "'";
-      if (comps.size() == 3) os << " component " << "xyz"[c];
-      os << " = " << v << " at " << (d.centring == Centring::Cell ? "cell" : "node") << " (" << gi << ", " << gj
-         << ", " << gk << ")";
-      bad.push_back(os.str());
-    }
-  }
-  if (bad.empty()) return;
-  std::ostringstream os;
-  os << "blow-up: non-finite values after step " << st_.step << ", t = " << st_.t << " (dt = " << st_.dt
-     << ", limited by " << st_.dtReason << "): ";
-  for (size_t i = 0; i < bad.size(); ++i) os << (i ? "; " : "") << bad[i];
-  throw BlowUp(os.str());
+long Simulation::advanceTo(double t, const StepEngine::Each& each, long maxSteps) {
+  initialize();
+  return engine_.advanceTo(t, each, maxSteps);
 }
 
 // Where the flow is fastest (the advective limit's cell), for a dt-collapse message.

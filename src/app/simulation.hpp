@@ -10,6 +10,7 @@
 
 #include "core/pipeline.hpp"
 #include "core/state.hpp"
+#include "core/step_engine.hpp"
 #include "effects/effect.hpp"
 
 namespace voigt {
@@ -18,12 +19,7 @@ class FieldWriter;
 class ProbeSet;
 class Checkpointer;
 
-// A run stopped because a field went non-finite or dt collapsed; what() names
-// the field, the cell (global i, j, k), the time, and where the last good
-// state was written. `voigt run` exits with kExitBlowUp.
-struct BlowUp : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// BlowUp (core/step_engine.hpp): a field went non-finite or dt collapsed.
 constexpr int kExitBlowUp = 3;
 // --wall-limit reached: a checkpoint was written, the run is unfinished and resumable
 // (--restart). 75 is sysexits' EX_TEMPFAIL: "try again later".
@@ -88,7 +84,10 @@ class Simulation {
   long long bytesPerRank() const { return st_.fields.bytes(st_.grid); }
   DtLimit stableDt() const;
   void initialize();            // allocate fields, set up effects (idempotent)
-  void advance(double dt);      // one time step of size dt
+  void advance(double dt);      // one time step of size dt (StepEngine::advance)
+  // Steps with the scene's dt rule until t, landing on it (StepEngine::advanceTo).
+  long advanceTo(double t, const StepEngine::Each& each = {}, long maxSteps = -1);
+  StepEngine& engine() { return engine_; }
   RunResult run();              // until end time or max steps, with output
   State& state() { return st_; }
   const State& state() const { return st_; }
@@ -108,9 +107,7 @@ class Simulation {
   nlohmann::json restore(const std::string& checkpointFile);
 
  private:
-  double chooseDt(double tEnd, double tNextOut);
   void output(bool force);
-  void checkFinite();
   std::string fastestNode() const;
   void writeTimeSeries();
   void writeTimeSeriesRow(std::ostream& os, bool header);
@@ -127,6 +124,7 @@ class Simulation {
   RunOptions opt_;
   State st_;
   Pipeline pipeline_;
+  StepEngine engine_;  // the time step and its dt (core/step_engine.hpp)
   std::vector<std::unique_ptr<Effect>> effects_;
   std::unique_ptr<FieldWriter> writer_;
   std::unique_ptr<ProbeSet> probes_;

@@ -22,14 +22,6 @@ int rankOf() {
   return r;
 }
 
-LoadOptions loadOptions(const std::vector<std::string>& sets) {
-  LoadOptions lo;
-  lo.overrides = sets;
-  lo.knownEffects = knownEffectNames();
-  lo.extraSections = effectSections();
-  return lo;
-}
-
 // --wall-limit: 3h, 170m, 3600s, 3600 (seconds), 2h30m, or SLURM's HH:MM:SS / MM:SS.
 // Seconds, or -1 if the text is not such a duration.
 double parseDuration(const std::string& text) {
@@ -101,7 +93,7 @@ int check(const Scene& scene, bool estimate, bool presets, const std::string& pa
     if (rankOf() == 0) std::cout << e.text() << std::flush;
   }
   if (presets) { // reuses the scene's calibration when --estimate made one
-    const std::string text = presetsReport(scene, path, loadOptions(sets), MPI_COMM_WORLD, estimate ? &e : nullptr);
+    const std::string text = presetsReport(scene, path, effectLoadOptions(sets), MPI_COMM_WORLD, estimate ? &e : nullptr);
     if (rankOf() == 0) std::cout << text;
   }
   return 0;
@@ -208,7 +200,7 @@ int main(int argc, char** argv) {
       if (app.got_subcommand("info")) {
         code = info();
       } else {
-        Scene scene = loadScene(scenePath, loadOptions(sets));
+        Scene scene = loadScene(scenePath, effectLoadOptions(sets));
         if (app.got_subcommand("check")) {
           code = check(scene, estimate, presets, scenePath, sets);
         } else {

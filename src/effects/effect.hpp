@@ -12,6 +12,7 @@
 
 #include "core/pipeline.hpp"
 #include "core/state.hpp"
+#include "scene/load.hpp"
 
 namespace voigt {
 
@@ -50,5 +51,14 @@ std::set<std::string> knownEffectNames();
 std::set<std::string> effectSections();
 // Instantiates the scene's effects, checks `requires`, sorts by setupOrder.
 std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene);
+
+// Loading a scene as `voigt run` does: every effect's name and section known to the
+// loader, then the --set overrides in order. Throws SceneError (file, line, key).
+// The one place that wires the loader to the registry (cli, tests, perf).
+LoadOptions effectLoadOptions(std::vector<std::string> overrides = {});
+Scene loadSceneWithEffects(const std::string& path, std::vector<std::string> overrides = {});
+// `name` is used in messages only (test and perf scenes).
+Scene loadSceneWithEffectsFromString(const std::string& yaml, const std::string& name,
+                                     std::vector<std::string> overrides = {});
 
 } // namespace voigt

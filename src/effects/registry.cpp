@@ -69,4 +69,21 @@ std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene) {
   return out;
 }
 
+LoadOptions effectLoadOptions(std::vector<std::string> overrides) {
+  LoadOptions lo;
+  lo.overrides = std::move(overrides);
+  lo.knownEffects = knownEffectNames();
+  lo.extraSections = effectSections();
+  return lo;
+}
+
+Scene loadSceneWithEffects(const std::string& path, std::vector<std::string> overrides) {
+  return loadScene(path, effectLoadOptions(std::move(overrides)));
+}
+
+Scene loadSceneWithEffectsFromString(const std::string& yaml, const std::string& name,
+                                     std::vector<std::string> overrides) {
+  return loadSceneFromString(yaml, name, effectLoadOptions(std::move(overrides)));
+}
+
 } // namespace voigt

@@ -13,11 +13,7 @@ using namespace voigt;
 namespace {
 
 Scene caseScene(const std::string& rel, std::vector<std::string> sets) {
-  LoadOptions lo;
-  lo.knownEffects = knownEffectNames();
-  lo.extraSections = effectSections();
-  lo.overrides = std::move(sets);
-  return loadScene(std::string(VOIGT_SOURCE_DIR) + "/" + rel, lo);
+  return loadSceneWithEffects(std::string(VOIGT_SOURCE_DIR) + "/" + rel, std::move(sets));
 }
 
 // Cell-centred field value at global cell (i, j, k), from whichever rank owns it.

@@ -209,15 +209,9 @@ Measured measure(const Simulation& sim, double theta, const double replayed[6], 
   return m;
 }
 
-// Advances to time t with the adaptive dt (landing on t), recording the steps.
-void advanceTo(Simulation& sim, double t, std::vector<double>& dts) {
-  State& st = sim.state();
-  while (st.t < t * (1 - 1e-12)) {
-    double dt = sim.stableDt().dt;
-    if (st.t + dt * (1 + 1e-9) >= t) dt = t - st.t;
-    sim.advance(dt);
-    dts.push_back(dt);
-  }
+// The steps' sizes, recorded as the engine takes them (StepEngine::advanceTo lands on t).
+StepEngine::Each recordDt(std::vector<double>& dts) {
+  return [&dts](const State& st) { dts.push_back(st.dt); };
 }
 
 // rotation: explicit (erratum 2 literally): first order, amplitude grows.
@@ -230,7 +224,7 @@ void rotate(int n, double cfl, const std::string& tag, bool checkPaper, std::vec
   std::vector<double> dts;
   for (double deg : degrees) {
     const double theta = deg * M_PI / 180;
-    advanceTo(sim, theta / kOmega, dts);
+    sim.advanceTo(theta / kOmega, recordDt(dts));
     double rep[6];
     replay(dts, 0.5, elastic::Rotation::Explicit, rep);
     const Measured m = measure(sim, theta, rep, rep);
@@ -273,7 +267,7 @@ std::vector<double> rotateCayley(int n, double cfl, const std::string& tag, std:
   std::vector<double> dts;
   for (double deg : degrees) {
     const double theta = deg * M_PI / 180;
-    advanceTo(sim, theta / kOmega, dts);
+    sim.advanceTo(theta / kOmega, recordDt(dts));
     double rep[6], closed[6], exact[6];
     replay(dts, 0.5, elastic::Rotation::Cayley, rep);
     const double thetaD = cayleyAngle(dts);

@@ -164,17 +164,6 @@ double modeAmplitude(State& st) {
   return 2 * a / g.n[0];
 }
 
-// Advances with the adaptive dt (stable limit, as Simulation::run chooses it)
-// to exactly `target`.
-void advanceTo(Simulation& sim, double target) {
-  State& st = sim.state();
-  while (st.t < target * (1 - 1e-12)) {
-    double dt = sim.stableDt().dt;
-    if (st.t + dt * (1 + 1e-9) >= target) dt = target - st.t;
-    sim.advance(dt);
-  }
-}
-
 // ---------------------------------------------------------------------------
 // 1. Linear growth rate.
 // ---------------------------------------------------------------------------
@@ -240,7 +229,7 @@ Growth measureGrowth(int n, const std::string& op, double a0 = 0.001) {
   // Sample at fixed times so every resolution and rank count fits the same points.
   for (int s = 1; s <= 24; ++s) {
     const double t = 0.1 * s;
-    advanceTo(sim, t);
+    sim.advanceTo(t);
     const double a = modeAmplitude(sim.state());
     if (std::getenv("VOIGT_RT_TRACE") && rank() == 0) // a(t) trace
       printf("rt trace n=%d t = %.2f a = %.6e\n", n, t, a);
@@ -314,7 +303,7 @@ TipRun runTips(int n, const std::string& op) {
   TipRun out;
   const double w0 = MPI_Wtime();
   for (const Reference& r : kHe1999) {
-    advanceTo(sim, r.tT / kSqrtA);
+    sim.advanceTo(r.tT / kSqrtA);
     Tips t = tips(sim.state());
     t.bubble -= 2, t.spike -= 2;
     out.at.push_back(t);

@@ -178,17 +178,6 @@ Poly traceCircle(double tEnd, double T, int m, int steps) {
 
 // ---- Running and measuring ---------------------------------------------------------
 
-// Advances to time t with the scene's adaptive dt, landing on t exactly (the
-// choice Simulation::run makes).
-void advanceTo(Simulation& sim, double t) {
-  State& st = sim.state();
-  while (st.t < t * (1 - 1e-12)) {
-    double dt = sim.stableDt().dt;
-    if (st.t + dt * (1 + 1e-9) >= t) dt = t - st.t;
-    sim.advance(dt);
-  }
-}
-
 struct Snapshot {
   double sharpChange = 0; // sharp area / initial - 1
   double hChange = 0;     // smoothed H area / initial - 1
@@ -261,7 +250,7 @@ ZalesakResult runZalesak(int n, Mode m) {
   const double w0 = MPI_Wtime();
   Simulation sim(test::scene(zalesakScene(n, m)), MPI_COMM_WORLD, RunOptions{});
   sim.initialize();
-  advanceTo(sim, kZT);
+  sim.advanceTo(kZT);
   ZalesakResult r;
   r.h = 100.0 / n;
   r.end = measure(sim, insideZalesak, zalesakPerimeter());
@@ -283,10 +272,10 @@ VortexResult runVortex(int n, double T, Mode m, const Poly& exactHalf, bool half
   sim.initialize();
   VortexResult r;
   r.h = 1.0 / n;
-  advanceTo(sim, 0.5 * T);
+  sim.advanceTo(0.5 * T);
   r.half = measure(sim, [&](double x, double y) { return exactHalf.inside(x, y); }, exactHalf.length());
   if (!halfOnly) {
-    advanceTo(sim, T);
+    sim.advanceTo(T);
     r.end = measure(sim, [](double x, double y) { return std::hypot(x - kVcx, y - kVcy) < kVR; }, 2 * M_PI * kVR);
   }
   if (!quiet) {

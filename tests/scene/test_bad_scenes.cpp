@@ -49,11 +49,7 @@ std::vector<BadFile> readTable() {
 
 // As src/cli/main.cpp loads a scene, then what the Simulation constructor checks.
 void loadAndSetUp(const std::string& path) {
-  LoadOptions lo;
-  lo.knownEffects = knownEffectNames();
-  lo.extraSections = effectSections();
-  lo.extraSections.insert("checkpoint");
-  const Scene scene = loadScene(path, lo);
+  const Scene scene = loadSceneWithEffects(path);
   Simulation sim(scene, MPI_COMM_WORLD);
 }
 

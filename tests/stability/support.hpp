@@ -27,19 +27,9 @@ inline int worldSize() {
   return s;
 }
 
-// The loader options of `voigt run`: every effect and its section, and `checkpoint`.
-inline LoadOptions runLoadOptions(std::vector<std::string> sets = {}) {
-  LoadOptions lo;
-  lo.overrides = std::move(sets);
-  lo.knownEffects = knownEffectNames();
-  lo.extraSections = effectSections();
-  lo.extraSections.insert("checkpoint");
-  return lo;
-}
-
-// A case scene with --set style overrides.
+// A case scene with --set style overrides, loaded as `voigt run` loads it.
 inline Scene caseScene(const std::string& rel, std::vector<std::string> sets) {
-  return loadScene(std::string(VOIGT_SOURCE_DIR) + "/cases/" + rel, runLoadOptions(std::move(sets)));
+  return loadSceneWithEffects(std::string(VOIGT_SOURCE_DIR) + "/cases/" + rel, std::move(sets));
 }
 
 // A fresh empty directory, the same path on every rank of comm; removed by the destructor.

@@ -70,7 +70,7 @@ void expectBitIdenticalRestart(const std::string& scenePath, const std::vector<s
     EXPECT_GT(b.at("wall_seconds_total").get<double>(), b.at("wall_seconds").get<double>());
     // scene.yaml records the scene as run (file plus --set): it loads back to the same tree,
     // and summary.json lists the --set overrides in order.
-    const Scene rec = loadScene(tmp.sub("split/scene.yaml"), runLoadOptions());
+    const Scene rec = loadSceneWithEffects(tmp.sub("split/scene.yaml"));
     EXPECT_EQ(YAML::Dump(rec.root), YAML::Dump(s.root));
     EXPECT_TRUE(a.at("restart_scene_changes").is_null());  // a fresh run compares nothing
     EXPECT_EQ(b.at("restart_scene_changes"), nlohmann::json::array()) << b.at("restart_scene_changes");
@@ -142,8 +142,8 @@ TEST(Restart, NamesTheSceneSectionsItChanges) {
     const auto j = nlohmann::json::parse(in);
     EXPECT_EQ(j.at("restart_scene_changes"), nlohmann::json::array({"output"}));
     // The first segment's record stays; the second's is beside it, with its own interval.
-    EXPECT_NE(loadScene(tmp.sub("r/scene.yaml"), runLoadOptions()).output.interval, 0.5);
-    EXPECT_EQ(loadScene(tmp.sub("r/scene_segment2.yaml"), runLoadOptions()).output.interval, 0.5);
+    EXPECT_NE(loadSceneWithEffects(tmp.sub("r/scene.yaml")).output.interval, 0.5);
+    EXPECT_EQ(loadSceneWithEffects(tmp.sub("r/scene_segment2.yaml")).output.interval, 0.5);
   }
 }
 

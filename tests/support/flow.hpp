@@ -13,10 +13,7 @@
 namespace voigt::test {
 
 inline Scene scene(const std::string& yaml) {
-  LoadOptions lo;
-  lo.knownEffects = knownEffectNames();
-  lo.extraSections = effectSections();
-  return loadSceneFromString(yaml, "test", lo);
+  return loadSceneWithEffectsFromString(yaml, "test");
 }
 
 // Position of local node (i,j,k).
