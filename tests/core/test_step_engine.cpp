@@ -1,0 +1,154 @@
+// The step engine (core/step_engine.hpp) on a pipeline of plain tasks, no physics:
+// the dt rule (fixed, max_dt, the smallest stable limit, nothing moves), landing
+// exactly on targets without a sliver step, advanceTo's step count, the finite
+// check that names the field and the global cell on any decomposition, and the
+// stop request. Expected values are exact: the rule is arithmetic, not numerics.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/grid.hpp"
+#include "core/step_engine.hpp"
+
+using namespace voigt;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Rig {
+  State st;
+  Pipeline p;
+  int stepsRun = 0; // Stage::Momentum tasks run
+  Rig() {
+    st.grid = makeGrid(MPI_COMM_WORLD, {8, 6, 4}, {0, 0, 0}, {1, 1, 1}, {false, false, false});
+    st.fields.declare("phi", Centring::Cell, 1, "test");
+    st.fields.declare("u", Centring::Node, 3, "test");
+    st.fields.allocate(st.grid);
+    p.add(Stage::Momentum, "test", "count", [this](State&) { ++stepsRun; });
+  }
+  ~Rig() { freeGrid(st.grid); }
+};
+
+StepEngine::Limit limit(double dt, const char* why) {
+  return [dt, why](const State&) { return DtLimit{dt, why}; };
+}
+
+} // namespace
+
+TEST(StepEngine, SmallestLimitThenMaxDt) {
+  Rig r;
+  TimeCfg tc;
+  StepEngine e(r.st, r.p, tc);
+  EXPECT_EQ(e.stableDt().reason, "none");
+  e.addLimit(limit(0.3, "advective CFL"));
+  e.addLimit(limit(0.2, "elastic wave"));
+  EXPECT_EQ(e.chooseDt(10), 0.2);
+  EXPECT_EQ(r.st.dtReason, "elastic wave");
+  tc.maxDt = 0.1;
+  StepEngine m(r.st, r.p, tc);
+  m.addLimit(limit(0.2, "elastic wave"));
+  EXPECT_EQ(m.chooseDt(10), 0.1);
+  EXPECT_EQ(r.st.dtReason, "max_dt");
+}
+
+TEST(StepEngine, FixedStepIgnoresLimits) {
+  Rig r;
+  TimeCfg tc;
+  tc.dt = 0.05;
+  StepEngine e(r.st, r.p, tc);
+  e.addLimit(limit(0.01, "advective CFL"));
+  EXPECT_EQ(e.chooseDt(10), 0.05);
+  EXPECT_EQ(r.st.dtReason, "fixed");
+}
+
+TEST(StepEngine, NothingMovesTakesMaxDtOrTheTimeLeft) {
+  Rig r;
+  TimeCfg tc;
+  StepEngine e(r.st, r.p, tc);
+  e.addLimit(limit(kInf, "advective CFL"));
+  r.st.t = 0.25;
+  EXPECT_EQ(e.chooseDt(1.0), 0.75);
+  EXPECT_EQ(r.st.dtReason, "nothing moves (clipped to output/end)");
+  EXPECT_EQ(e.rule({kInf, "x"}, 2.0).dt, 2.0);
+  tc.maxDt = 0.1;
+  StepEngine m(r.st, r.p, tc);
+  EXPECT_EQ(m.rule({kInf, "x"}, 2.0).dt, 0.1);
+}
+
+TEST(StepEngine, LandsOnTargetsWithoutASliver) {
+  Rig r;
+  StepEngine e(r.st, r.p, TimeCfg{});
+  e.addLimit(limit(0.3, "advective CFL"));
+  r.st.t = 0.0;
+  EXPECT_EQ(e.chooseDt(10, 0.2), 0.2); // the output time first
+  EXPECT_EQ(StepEngine::unclipped(r.st.dtReason), "advective CFL");
+  // A step within 1e-9 (relative) of the target lands on it instead of leaving a sliver.
+  EXPECT_EQ(e.chooseDt(0.3 * (1 + 0.5e-9)), 0.3 * (1 + 0.5e-9));
+  EXPECT_EQ(e.chooseDt(0.3 * (1 + 2e-9)), 0.3);
+  // A target behind t is not a target.
+  r.st.t = 0.5;
+  EXPECT_EQ(e.chooseDt(10, 0.2), 0.3);
+  // A limit's own parenthesis survives unclipped().
+  EXPECT_EQ(StepEngine::unclipped("advective CFL (prescribed flow) (clipped to output/end)"),
+            "advective CFL (prescribed flow)");
+}
+
+TEST(StepEngine, AdvanceToLandsExactly) {
+  Rig r;
+  StepEngine e(r.st, r.p, TimeCfg{});
+  e.addLimit(limit(0.3, "advective CFL"));
+  int hooks = 0, seen = 0;
+  e.addAfterStep([&](State&) { ++hooks; });
+  // 0.3, 0.6, 0.9, then 0.1 to land on 1.0.
+  EXPECT_EQ(e.advanceTo(1.0, [&](const State&) { ++seen; }), 4);
+  EXPECT_EQ(r.st.t, 1.0);
+  EXPECT_EQ(r.st.step, 4);
+  EXPECT_EQ(r.stepsRun, 4);
+  EXPECT_EQ(hooks, 4);
+  EXPECT_EQ(seen, 4);
+  EXPECT_EQ(e.advanceTo(1.0), 0); // already there
+  EXPECT_EQ(e.advanceTo(10, {}, 2), 2); // the step cap
+  EXPECT_EQ(r.st.step, 6);
+  e.advanceSteps(3, 0.01);
+  EXPECT_EQ(r.st.step, 9);
+}
+
+TEST(StepEngine, NonFiniteNamesFieldAndGlobalCell) {
+  Rig r;
+  StepEngine e(r.st, r.p, TimeCfg{});
+  const Grid& g = r.st.grid;
+  // A NaN in u.y at global node (5, 2, 3), written by whichever rank owns it.
+  VecField u = r.st.fields.vector("u");
+  const int gi = 5, gj = 2, gk = 3;
+  const bool mine = gi >= g.c0[0] && gi < g.nodeHi(0) && gj >= g.c0[1] && gj < g.nodeHi(1) && gk >= g.c0[2] &&
+                    gk < g.nodeHi(2);
+  if (mine) {
+    auto one = Kokkos::subview(u.c[1], g.local(0, gi), g.local(1, gj), g.local(2, gk));
+    Kokkos::deep_copy(one, std::nan(""));
+  }
+  try {
+    e.advance(0.1);
+    FAIL() << "no BlowUp";
+  } catch (const BlowUp& b) {
+    const std::string m = b.what();
+    EXPECT_NE(m.find("field 'u' component y"), std::string::npos) << m;
+    EXPECT_NE(m.find("node (5, 2, 3)"), std::string::npos) << m;
+    EXPECT_NE(m.find("after step 1"), std::string::npos) << m;
+  }
+}
+
+TEST(StepEngine, StopRequestStops) {
+  Rig r;
+  r.p.add(Stage::Corrections, "test", "stop", [](State& st) { st.stopRequest = "contact"; });
+  StepEngine e(r.st, r.p, TimeCfg{});
+  try {
+    e.advance(0.1);
+    FAIL() << "no BlowUp";
+  } catch (const BlowUp& b) {
+    EXPECT_EQ(std::string(b.what()), "stopped: contact");
+  }
+}
