@@ -7,6 +7,7 @@
 // The q div_h(v) term removes the compression of the dual-cell divergence,
 // which the projection does not zero (it zeroes D, a different stencil), so a
 // uniform q stays uniform.
+#include <string>
 #include <type_traits>
 
 #include "core/field.hpp"
@@ -15,6 +16,11 @@
 namespace voigt {
 
 enum class Limiter { MinMod = 0, VanLeer = 1, MC = 2, None = 3 };
+
+// The scene's advection.limiter (validated by the loader: minmod, van_leer, mc, none).
+inline Limiter limiterNamed(const std::string& l) {
+  return l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None : Limiter::MinMod;
+}
 
 KOKKOS_INLINE_FUNCTION double limitedSlope(int lim, double a, double b) {
   if (lim == 3) return 0.5 * (a + b); // unlimited central slope (Fromm)

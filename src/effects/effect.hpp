@@ -12,9 +12,20 @@
 
 #include "core/pipeline.hpp"
 #include "core/state.hpp"
+#include "levelset/params.hpp"
 #include "scene/load.hpp"
 
 namespace voigt {
+
+// What an effect resolves from its own scene section and shares with the others:
+// the owner fills it in publish(), before any effect's configure(), and the others
+// read it there, never by parsing a section they do not own.
+struct Published {
+  // level_set: the material where psi > 0 ("" without level_set), and the smoothing
+  // half-width and re-initialisation band of Eq. (4), in cells.
+  std::string phase;
+  LevelSetGeometry levelSet;
+};
 
 class Effect {
  public:
@@ -23,7 +34,10 @@ class Effect {
   virtual std::vector<std::string> dependsOn() const { return {}; }
   // Setup order: lower first (navier_stokes builds the masks obstacles extend).
   virtual int setupOrder() const { return 10; }
-  virtual void configure(const Scene&) {}
+  // Validates and resolves what others read (Published); runs for every effect first.
+  virtual void publish(const Scene&, Published&) const {}
+  // Reads the effect's own section (rejecting unknown keys) and what others published.
+  virtual void configure(const Scene&, const Published&) {}
   virtual void declareFields(FieldStore&) const {}
   virtual void setup(State&) {}
   virtual void registerTasks(Pipeline&) = 0;

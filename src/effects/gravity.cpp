@@ -13,7 +13,7 @@ class Gravity : public Effect {
  public:
   std::string name() const override { return "gravity"; }
   std::vector<std::string> dependsOn() const override { return {"navier_stokes"}; }
-  void configure(const Scene& s) override {
+  void configure(const Scene& s, const Published&) override {
     g_ = s.gravity;
     cfl_ = s.time.cfl;
   }

@@ -13,7 +13,7 @@ class Obstacles : public Effect {
   std::string name() const override { return "obstacles"; }
   std::vector<std::string> dependsOn() const override { return {"navier_stokes"}; }
   int setupOrder() const override { return 5; } // after navier_stokes built the face mask
-  void configure(const Scene& s) override { obstacles_ = s.obstacles; }
+  void configure(const Scene& s, const Published&) override { obstacles_ = s.obstacles; }
   void setup(State& st) override {
     IntField mask = st.fields.integer("fix_mask");
     addObstacleMask(st.grid, obstacles_, mask, st.fields.vector("fix_value"));

@@ -24,7 +24,7 @@ class PrescribedFlow : public Effect {
  public:
   std::string name() const override { return "prescribed_flow"; }
   int setupOrder() const override { return 0; }
-  void configure(const Scene& s) override {
+  void configure(const Scene& s, const Published&) override {
     const Section sec = topSection(s, "prescribed_flow");
     for (auto& e : s.effects)
       if (e == "navier_stokes")

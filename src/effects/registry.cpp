@@ -65,7 +65,9 @@ std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene) {
       }
   std::stable_sort(out.begin(), out.end(),
                    [](auto& a, auto& b) { return a->setupOrder() < b->setupOrder(); });
-  for (auto& e : out) e->configure(scene);
+  Published pub;
+  for (auto& e : out) e->publish(scene, pub);
+  for (auto& e : out) e->configure(scene, pub);
   return out;
 }
 

@@ -17,8 +17,8 @@ class Reinit : public Effect {
  public:
   std::string name() const override { return "reinit"; }
   std::vector<std::string> dependsOn() const override { return {"level_set"}; }
-  void configure(const Scene& s) override {
-    geo_ = levelSetGeometry(s);
+  void configure(const Scene& s, const Published& pub) override {
+    geo_ = pub.levelSet;
     const Section r = topSection(s, "reinit");
     interval_ = r.integer("interval", 1, 1, 1000000);
     p_.iterations = int(r.integer("iterations", 2, 1, 1000));

@@ -56,7 +56,7 @@ class SolidBody : public Effect {
  public:
   std::string name() const override { return "solid_body"; }
   std::vector<std::string> dependsOn() const override { return {"level_set"}; }
-  void configure(const Scene& s) override {
+  void configure(const Scene& s, const Published& pub) override {
     const Section sec = topSection(s, "solid_body");
     contacts_ = sec.boolean("contacts", true);
     contactCells_ = sec.number("contact_gap", 1.0, Range::positive());
@@ -81,10 +81,8 @@ class SolidBody : public Effect {
       }
     }
     sec.finish();
-    geo_ = levelSetGeometry(s);
-    const YAML::Node ph = s.root["level_set"]["phase"];
-    if (ph && ph.IsScalar() && s.materials.count(ph.as<std::string>()))
-      rhoSolid_ = s.materials.at(ph.as<std::string>()).density;
+    geo_ = pub.levelSet;
+    if (s.materials.count(pub.phase)) rhoSolid_ = s.materials.at(pub.phase).density;
     g_ = s.gravity;
   }
   void declareFields(FieldStore& f) const override {

@@ -38,10 +38,10 @@ SymTensorField symTensorField(const FieldStore& f, const std::string& base) {
   return t;
 }
 
-void Elasticity::configure(const Scene& s) {
+void Elasticity::configure(const Scene& s, const Published& pub) {
   scene_ = &s;
-  // level_set (configured first: lower setupOrder) has validated its section.
-  phase_ = s.root["level_set"] && s.root["level_set"]["phase"] ? s.root["level_set"]["phase"].as<std::string>() : "";
+  phase_ = pub.phase; // level_set's (validated there)
+  geo_ = pub.levelSet;
   const Section sec = topSection(s, "elasticity");
   if (!s.materials.count(phase_)) sec.fail("band", "needs level_set.phase to name the solid material");
   const Material& m = s.materials.at(phase_);
@@ -66,9 +66,7 @@ void Elasticity::configure(const Scene& s) {
   is.finish();
   sec.finish();
   cfl_ = s.time.cfl;
-  const std::string& l = s.advection.limiter;
-  limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
-                                                                                       : Limiter::MinMod;
+  limiter_ = limiterNamed(s.advection.limiter);
 }
 
 void Elasticity::declareFields(FieldStore& f) const {
@@ -94,7 +92,7 @@ void Elasticity::refresh(State& st, const SymTensorField& t, const Range3* reads
 
 void Elasticity::setup(State& st) {
   const Grid& g = st.grid;
-  const LevelSetGeometry geo = levelSetGeometry(*scene_);
+  const LevelSetGeometry& geo = geo_;
   hmin_ = LevelSetGeometry::hMin(g);
   kappa_ = geo.kappa(g);
   threshold_ = -(kappa_ + bandCells_ * hmin_);

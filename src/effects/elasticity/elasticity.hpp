@@ -60,7 +60,7 @@ class Elasticity : public Effect {
   std::string name() const override { return "elasticity"; }
   std::vector<std::string> dependsOn() const override { return {"level_set"}; }
   int setupOrder() const override { return 6; } // after level_set (psi exists), before reinit
-  void configure(const Scene& s) override;
+  void configure(const Scene& s, const Published& pub) override;
   void declareFields(FieldStore& f) const override;
   void setup(State& st) override;
   void registerTasks(Pipeline& p) override;
@@ -94,6 +94,7 @@ class Elasticity : public Effect {
 
   const Scene* scene_ = nullptr;
   std::string phase_;
+  LevelSetGeometry geo_; // level_set's smoothing and band (Published)
   double mu_ = 0, rho_ = 1, etaKV_ = 0;
   elastic::Rotation rotation_ = elastic::Rotation::Cayley;
   double tau0_[6] = {0, 0, 0, 0, 0, 0};

@@ -10,16 +10,23 @@ namespace voigt {
 
 std::unique_ptr<Effect> makeLevelSet() { return std::make_unique<LevelSet>(); }
 
-void LevelSet::configure(const Scene& s) {
-  scene_ = &s;
-  geo_ = levelSetGeometry(s);
+// The phase and the band geometry, which navier_stokes, elasticity, reinit and
+// solid_body read from Published.
+void LevelSet::publish(const Scene& s, Published& pub) const {
   const Section ls = topSection(s, "level_set");
-  ls.number("smoothing", 0); // validated by levelSetGeometry
-  ls.number("band", 0);
   if (!ls.has("phase")) ls.fail("phase", "is required: the material where psi > 0");
-  phase_ = ls.string("phase", "");
-  if (!s.materials.count(phase_)) ls.fail("phase", "names no material in 'materials'");
-  if (phase_ == s.fluid) ls.fail("phase", "must differ from 'fluid' (" + s.fluid + "), the material where psi < 0");
+  pub.phase = ls.string("phase", "");
+  if (!s.materials.count(pub.phase)) ls.fail("phase", "names no material in 'materials'");
+  if (pub.phase == s.fluid) ls.fail("phase", "must differ from 'fluid' (" + s.fluid + "), the material where psi < 0");
+  pub.levelSet = levelSetGeometry(s);
+}
+
+void LevelSet::configure(const Scene& s, const Published& pub) {
+  scene_ = &s;
+  geo_ = pub.levelSet;
+  phase_ = pub.phase;
+  const Section ls = topSection(s, "level_set");
+  for (const char* k : {"smoothing", "band", "phase"}) ls.has(k); // validated in publish()
   rho1_ = s.materials.at(phase_).density;
   mu1_ = s.materials.at(phase_).viscosity;
   rho2_ = s.fluidMaterial().density;
@@ -30,9 +37,7 @@ void LevelSet::configure(const Scene& s) {
   globalCorrection_ = ls.choice("volume_correction", "global", {"global", "none"}) == "global";
   for (int f = 0; f < 6; ++f) open_[f] = s.bc[f].type == BcType::Inflow || s.bc[f].type == BcType::Outflow;
   ls.finish();
-  const std::string& l = s.advection.limiter;
-  limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
-                                                                                       : Limiter::MinMod;
+  limiter_ = limiterNamed(s.advection.limiter);
 }
 
 void LevelSet::declareFields(FieldStore& f) const {

@@ -18,7 +18,8 @@ class LevelSet : public Effect {
  public:
   std::string name() const override { return "level_set"; }
   int setupOrder() const override { return 5; } // after navier_stokes (density exists), before reinit
-  void configure(const Scene& s) override;
+  void publish(const Scene& s, Published& pub) const override;
+  void configure(const Scene& s, const Published& pub) override;
   void declareFields(FieldStore& f) const override;
   void setup(State& st) override;
   void registerTasks(Pipeline& p) override;

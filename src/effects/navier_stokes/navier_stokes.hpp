@@ -16,7 +16,7 @@ class NavierStokes : public Effect {
  public:
   std::string name() const override { return "navier_stokes"; }
   int setupOrder() const override { return 0; }
-  void configure(const Scene& s) override;
+  void configure(const Scene& s, const Published& pub) override;
   void declareFields(FieldStore& f) const override;
   void setup(State& st) override;
   void registerTasks(Pipeline& p) override;

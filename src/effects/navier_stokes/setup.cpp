@@ -21,19 +21,13 @@ SymTensorField stressField(const FieldStore& f) {
   return t;
 }
 
-void NavierStokes::configure(const Scene& s) {
+void NavierStokes::configure(const Scene& s, const Published& pub) {
   scene_ = &s;
-  const std::string& l = s.advection.limiter;
-  limiter_ = l == "van_leer" ? Limiter::VanLeer : l == "mc" ? Limiter::MC : l == "none" ? Limiter::None
-                                                                                       : Limiter::MinMod;
+  limiter_ = limiterNamed(s.advection.limiter);
   // Conservative momentum advection where the density varies: two phases of
-  // different density (velocity form at ratio 1000 creates energy).
-  bool varying = false;
-  if (std::find(s.effects.begin(), s.effects.end(), "level_set") != s.effects.end()) {
-    const YAML::Node ph = s.root["level_set"]["phase"]; // validated by the level_set effect
-    const auto m = ph && ph.IsScalar() ? s.materials.find(ph.Scalar()) : s.materials.end();
-    varying = m == s.materials.end() || m->second.density != s.fluidMaterial().density;
-  }
+  // different density (velocity form at ratio 1000 creates energy). The phase is
+  // level_set's (validated there; "" without it).
+  const bool varying = !pub.phase.empty() && s.materials.at(pub.phase).density != s.fluidMaterial().density;
   conservative_ = s.advection.momentum == "conservative" || (s.advection.momentum == "auto" && varying);
   bool haveOutflow = false;
   VOIGT_UNROLL
