@@ -130,25 +130,37 @@ KOKKOS_FORCEINLINE_FUNCTION void scalarSum(const Kokkos::View<double****, Kokkos
   const double ap = F(ip, jp, kp, s0), am = F(i, j, k, s0);
   tend -= (F(ip, jp, kp, s0 + 1) - F(i, j, k, s0 + 1) - q0 * (ap - am)) / h;
 }
+// The face fluxes of q along the three axes into F (Cell: q at cell centres).
+template <bool Cell, class Flux>
+inline void scalarFacesXYZ(const Field& q, const VecField& v, Range3 r, Limiter limiter, const Flux& F) {
+  withLimiter(limiter, [&](auto L) {
+    scalarFaces<0, Cell, decltype(L)::value>(q, v.c[0], r, F);
+    scalarFaces<1, Cell, decltype(L)::value>(q, v.c[1], r, F);
+    scalarFaces<2, Cell, decltype(L)::value>(q, v.c[2], r, F);
+  });
+}
+
+// The advective tendency of q at (i, j, k) from the three axes' face fluxes.
+template <class Flux>
+KOKKOS_FORCEINLINE_FUNCTION double scalarTendency(const Flux& F, int i, int j, int k, double q0, double h0, double h1,
+                                             double h2) {
+  double tend = 0;
+  scalarSum<0>(F, i, j, k, q0, h0, tend);
+  scalarSum<1>(F, i, j, k, q0, h1, tend);
+  scalarSum<2>(F, i, j, k, q0, h2, tend);
+  return tend;
+}
 } // namespace faces
 
 inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField& v, const Field& rhs, Range3 nodes,
                                   Limiter limiter, FluxScratch& scratch, bool assign = false) {
   scratch.reserve(g, 6);
   auto F = scratch.F;
-  withLimiter(limiter, [&](auto L) {
-    faces::scalarFaces<0, false, decltype(L)::value>(q, v.c[0], nodes, F);
-    faces::scalarFaces<1, false, decltype(L)::value>(q, v.c[1], nodes, F);
-    faces::scalarFaces<2, false, decltype(L)::value>(q, v.c[2], nodes, F);
-  });
+  faces::scalarFacesXYZ<false>(q, v, nodes, limiter, F);
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "node_advection_sum", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-        const double q0 = q(i, j, k);
-        double tend = 0;
-        faces::scalarSum<0>(F, i, j, k, q0, h0, tend);
-        faces::scalarSum<1>(F, i, j, k, q0, h1, tend);
-        faces::scalarSum<2>(F, i, j, k, q0, h2, tend);
+        const double tend = faces::scalarTendency(F, i, j, k, q(i, j, k), h0, h1, h2);
         rhs(i, j, k) = (assign ? 0.0 : rhs(i, j, k)) + tend; // assign: as addMomentumAdvectionFaces
       });
 }
@@ -169,19 +181,12 @@ inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, 
                                  Limiter limiter, double dt, double a, bool storeOld, FluxScratch& scratch) {
   scratch.reserve(g, 6);
   auto F = scratch.F;
-  withLimiter(limiter, [&](auto L) {
-    faces::scalarFaces<0, true, decltype(L)::value>(q, v.c[0], cells, F);
-    faces::scalarFaces<1, true, decltype(L)::value>(q, v.c[1], cells, F);
-    faces::scalarFaces<2, true, decltype(L)::value>(q, v.c[2], cells, F);
-  });
+  faces::scalarFacesXYZ<true>(q, v, cells, limiter, F);
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "cell_advection_rk2", cells, KOKKOS_LAMBDA(int i, int j, int k) {
         const double q0 = q(i, j, k);
-        double tend = 0;
-        faces::scalarSum<0>(F, i, j, k, q0, h0, tend);
-        faces::scalarSum<1>(F, i, j, k, q0, h1, tend);
-        faces::scalarSum<2>(F, i, j, k, q0, h2, tend);
+        const double tend = faces::scalarTendency(F, i, j, k, q0, h0, h1, h2);
         double r = 0; // as the zeroed rhs the callers used: 0 + (-0) is +0, bit for bit
         r += tend;
         if (storeOld) o(i, j, k) = q0;

@@ -21,31 +21,34 @@ inline void nodeDensity(const Grid& g, const Field& rho, const Field& r0, Range3
   for_each3("node_density", nodes, KOKKOS_LAMBDA(int i, int j, int k) { r0(i, j, k) = G.nodeMean(rho, i, j, k); });
 }
 
-// Non-conservative stage 1: u0 = u; u += dt rhs; prescribed components re-imposed.
-inline void momentumStage1(const VecField& u, const VecField& u0, const VecField& rhs, double dt,
-                           const IntField& mask, const VecField& val, Range3 nodes) {
-  for_each3("rk2_stage1", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+// Non-conservative SSP-RK2 stage, prescribed components re-imposed:
+//   stage 1: u0 = u; u += dt rhs;   stage 2: u = (u0 + u + dt rhs) / 2.
+template <int Stage>
+inline void momentumStage(const VecField& u, const VecField& u0, const VecField& rhs, double dt, const IntField& mask,
+                          const VecField& val, Range3 nodes) {
+  for_each3(Stage == 1 ? "rk2_stage1" : "rk2_stage2", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
     const int m = mask(i, j, k);
     VOIGT_UNROLL
     for (int c = 0; c < 3; ++c) {
       const double un = u.c[c](i, j, k);
-      u0.c[c](i, j, k) = un;
-      u.c[c](i, j, k) = (m >> c) & 1 ? val.c[c](i, j, k) : un + dt * rhs.c[c](i, j, k);
-    }
-  });
-}
-
-// Non-conservative stage 2: u = (u0 + u + dt rhs) / 2; prescribed components re-imposed.
-inline void momentumStage2(const VecField& u, const VecField& u0, const VecField& rhs, double dt,
-                           const IntField& mask, const VecField& val, Range3 nodes) {
-  for_each3("rk2_stage2", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-    const int m = mask(i, j, k);
-    VOIGT_UNROLL
-    for (int c = 0; c < 3; ++c) {
-      const double s = 0.5 * (u0.c[c](i, j, k) + u.c[c](i, j, k) + dt * rhs.c[c](i, j, k));
+      double s;
+      if (Stage == 1) { // not constexpr: nvcc refuses a first capture inside one
+        u0.c[c](i, j, k) = un;
+        s = un + dt * rhs.c[c](i, j, k);
+      } else {
+        s = 0.5 * (u0.c[c](i, j, k) + un + dt * rhs.c[c](i, j, k));
+      }
       u.c[c](i, j, k) = (m >> c) & 1 ? val.c[c](i, j, k) : s;
     }
   });
+}
+inline void momentumStage1(const VecField& u, const VecField& u0, const VecField& rhs, double dt,
+                           const IntField& mask, const VecField& val, Range3 nodes) {
+  momentumStage<1>(u, u0, rhs, dt, mask, val, nodes);
+}
+inline void momentumStage2(const VecField& u, const VecField& u0, const VecField& rhs, double dt,
+                           const IntField& mask, const VecField& val, Range3 nodes) {
+  momentumStage<2>(u, u0, rhs, dt, mask, val, nodes);
 }
 
 // Conservative stage 1: r1 = r0 + dt rr; u0 = u; u = r0 (u + dt rhs) / r1. A prescribed

@@ -2,6 +2,8 @@
 
 #include <mpi.h>
 
+#include "kernels/box_copy.hpp"
+
 namespace voigt {
 
 namespace {
@@ -24,25 +26,8 @@ Slab slab(const Grid& g, int d, int from, int to) {
   return s;
 }
 
-void pack(const Field& f, const Slab& s, Buf buf, long long off) {
-  const int n0 = s.e[0] - s.b[0], n1 = s.e[1] - s.b[1];
-  const int b0 = s.b[0], b1 = s.b[1], b2 = s.b[2];
-  Kokkos::parallel_for(
-      "halo_pack", Policy3({s.b[0], s.b[1], s.b[2]}, {s.e[0], s.e[1], s.e[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        buf(off + (i - b0) + n0 * ((j - b1) + 1LL * n1 * (k - b2))) = f(i, j, k);
-      });
-}
-
-void unpack(const Field& f, const Slab& s, Buf buf, long long off) {
-  const int n0 = s.e[0] - s.b[0], n1 = s.e[1] - s.b[1];
-  const int b0 = s.b[0], b1 = s.b[1], b2 = s.b[2];
-  Kokkos::parallel_for(
-      "halo_unpack", Policy3({s.b[0], s.b[1], s.b[2]}, {s.e[0], s.e[1], s.e[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        f(i, j, k) = buf(off + (i - b0) + n0 * ((j - b1) + 1LL * n1 * (k - b2)));
-      });
-}
+void pack(const Field& f, const Slab& s, Buf buf, long long off) { copyBoxFlat<true>(f, s.b, s.e, buf, off); }
+void unpack(const Field& f, const Slab& s, Buf buf, long long off) { copyBoxFlat<false>(f, s.b, s.e, buf, off); }
 } // namespace
 
 void Halo::exchange(const std::vector<Field>& fields) {

@@ -29,6 +29,16 @@ h5::Box ownedBox(const Grid& g, Centring c) {
   return b;
 }
 
+// fn(arrays): field n's arrays as one vector, for writeBox/readBox: its IntField,
+// its Field, or its three components.
+template <class Fn> void withArrays(const FieldStore& fields, const std::string& n, Fn&& fn) {
+  const auto& d = fields.decls().at(n);
+  if (d.isInt) return fn(std::vector<IntField>{fields.integer(n)});
+  if (d.components == 1) return fn(std::vector<Field>{fields.scalar(n)});
+  const VecField v = fields.vector(n);
+  fn(std::vector<Field>{v.c[0], v.c[1], v.c[2]});
+}
+
 void fsyncPath(const std::string& path, bool dir) {
   const int fd = ::open(path.c_str(), dir ? O_RDONLY | O_DIRECTORY : O_RDONLY);
   if (fd < 0) return;
@@ -193,14 +203,7 @@ std::string Checkpointer::write(long step, const FieldStore& fields, const nlohm
     for (auto& n : fields.allocatedNames()) {
       const auto& d = fields.decls().at(n);
       const h5::Box box = ownedBox(g_, d.centring);
-      if (d.isInt) {
-        h5::writeBox(grp, dxpl, g_, n, std::vector<IntField>{fields.integer(n)}, box, tmp);
-      } else if (d.components == 1) {
-        h5::writeBox(grp, dxpl, g_, n, std::vector<Field>{fields.scalar(n)}, box, tmp);
-      } else {
-        const VecField v = fields.vector(n);
-        h5::writeBox(grp, dxpl, g_, n, std::vector<Field>{v.c[0], v.c[1], v.c[2]}, box, tmp);
-      }
+      withArrays(fields, n, [&](const auto& arrays) { h5::writeBox(grp, dxpl, g_, n, arrays, box, tmp); });
     }
     grp.close(tmp);
     file.close(tmp);
@@ -321,14 +324,7 @@ nlohmann::json readCheckpoint(const Grid& g, FieldStore& fields, const std::stri
         (f.at("centring").get<std::string>() == "node") != (d.centring == Centring::Node))
       throw std::runtime_error(path + ": field '" + n + "' has a different shape in the checkpoint");
     const h5::Box box = ownedBox(g, d.centring);
-    if (d.isInt) {
-      h5::readBox(grp, dxpl, g, n, std::vector<IntField>{fields.integer(n)}, box, path);
-    } else if (d.components == 1) {
-      h5::readBox(grp, dxpl, g, n, std::vector<Field>{fields.scalar(n)}, box, path);
-    } else {
-      const VecField v = fields.vector(n);
-      h5::readBox(grp, dxpl, g, n, std::vector<Field>{v.c[0], v.c[1], v.c[2]}, box, path);
-    }
+    withArrays(fields, n, [&](const auto& arrays) { h5::readBox(grp, dxpl, g, n, arrays, box, path); });
   }
   grp.close(path);
   file.close(path);

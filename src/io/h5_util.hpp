@@ -14,6 +14,7 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "kernels/box_copy.hpp"
 
 namespace voigt::h5 {
 
@@ -113,12 +114,7 @@ void writeBox(hid_t file, hid_t dxpl, const Grid& g, const std::string& name, co
   Packed buf("io::packed", count[0], count[1], count[2], nc);
   const int lb[3] = {g.local(0, box.b[0]), g.local(1, box.b[1]), g.local(2, box.b[2])};
   const int le[3] = {g.local(0, box.e[0]), g.local(1, box.e[1]), g.local(2, box.e[2])};
-  for (int c = 0; c < nc && !empty; ++c) {
-    const View src = comps[c];
-    const int bx = lb[0], by = lb[1], bz = lb[2];
-    Kokkos::parallel_for("io::pack", Policy3({lb[0], lb[1], lb[2]}, {le[0], le[1], le[2]}),
-                         KOKKOS_LAMBDA(int i, int j, int k) { buf(k - bz, j - by, i - bx, c) = src(i, j, k); });
-  }
+  for (int c = 0; c < nc && !empty; ++c) copyBoxPacked<true>(comps[c], lb, le, buf, c);
   auto host = Kokkos::create_mirror_view(buf);
   Kokkos::deep_copy(host, buf);
 
@@ -180,12 +176,7 @@ void readBox(hid_t file, hid_t dxpl, const Grid& g, const std::string& name, con
   Kokkos::deep_copy(buf, host);
   const int lb[3] = {g.local(0, box.b[0]), g.local(1, box.b[1]), g.local(2, box.b[2])};
   const int le[3] = {g.local(0, box.e[0]), g.local(1, box.e[1]), g.local(2, box.e[2])};
-  for (int c = 0; c < nc; ++c) {
-    const View dst = comps[c];
-    const int bx = lb[0], by = lb[1], bz = lb[2];
-    Kokkos::parallel_for("io::unpack", Policy3({lb[0], lb[1], lb[2]}, {le[0], le[1], le[2]}),
-                         KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = buf(k - bz, j - by, i - bx, c); });
-  }
+  for (int c = 0; c < nc; ++c) copyBoxPacked<false>(comps[c], lb, le, buf, c);
   Kokkos::fence();
 }
 

@@ -120,6 +120,22 @@ bool Section::has(const std::string& key) const {
 
 void Section::allow(const std::string& key) const { read_->insert(key); }
 
+// The scalar n parsed whole as T (an optional leading '+'), else failAt: "'s' tooLarge"
+// when out of T's range, "expected <what>, got 's'" when not a T.
+template <class T>
+T Section::parseWhole(const YAML::Node& n, const std::string& kp, const char* what, const char* tooLarge) const {
+  const std::string& s = n.Scalar();
+  const char* b = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
+  const char* e = s.data() + s.size();
+  T v = 0;
+  auto res = std::from_chars(b, e, v);
+  if (!s.empty() && res.ec == std::errc::result_out_of_range && res.ptr == e)
+    failAt(markOf(n), kp, "'" + s + "' " + tooLarge);
+  if (s.empty() || res.ec != std::errc() || res.ptr != e)
+    failAt(markOf(n), kp, std::string("expected ") + what + ", got '" + s + "'");
+  return v;
+}
+
 double Section::toNumber(const YAML::Node& n, const std::string& kp, Range r) const {
   if (!n.IsScalar()) failAt(markOf(n), kp, "expected a number, got " + kind(n));
   const std::string& s = n.Scalar();
@@ -127,14 +143,7 @@ double Section::toNumber(const YAML::Node& n, const std::string& kp, Range r) co
   std::string l = lower(s);
   if (l == ".inf" || l == "+.inf" || l == "-.inf" || l == ".nan")
     failAt(markOf(n), kp, "must be a finite number (got '" + s + "')");
-  const char* b = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
-  const char* e = s.data() + s.size();
-  double v = 0;
-  auto res = std::from_chars(b, e, v);
-  if (!s.empty() && res.ec == std::errc::result_out_of_range && res.ptr == e)
-    failAt(markOf(n), kp, "'" + s + "' is out of the range of a double (about 1e-308 to 1e308)");
-  if (s.empty() || res.ec != std::errc() || res.ptr != e)
-    failAt(markOf(n), kp, "expected a number, got '" + s + "'");
+  const double v = parseWhole<double>(n, kp, "a number", "is out of the range of a double (about 1e-308 to 1e308)");
   if (!std::isfinite(v)) failAt(markOf(n), kp, "must be a finite number (got '" + s + "')");
   if (!r.contains(v)) failAt(markOf(n), kp, r.describe() + " (got " + s + ")");
   return v;
@@ -143,14 +152,7 @@ double Section::toNumber(const YAML::Node& n, const std::string& kp, Range r) co
 long Section::toInteger(const YAML::Node& n, const std::string& kp, long lo, long hi) const {
   if (!n.IsScalar() || n.Tag() == "!") failAt(markOf(n), kp, "expected an integer, got " + kind(n));
   const std::string& s = n.Scalar();
-  const char* b = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
-  const char* e = s.data() + s.size();
-  long v = 0;
-  auto res = std::from_chars(b, e, v);
-  if (!s.empty() && res.ec == std::errc::result_out_of_range && res.ptr == e)
-    failAt(markOf(n), kp, "'" + s + "' is too large");
-  if (s.empty() || res.ec != std::errc() || res.ptr != e)
-    failAt(markOf(n), kp, "expected an integer, got '" + s + "'");
+  const long v = parseWhole<long>(n, kp, "an integer", "is too large");
   if (v < lo || v > hi) {
     std::string what = hi == std::numeric_limits<long>::max()
                            ? "must be >= " + std::to_string(lo)

@@ -73,6 +73,8 @@ class Section { // a YAML map plus its dotted path, e.g. "time" or "obstacles[2]
   bool lookup(const std::string& key, YAML::Node& out) const; // marks key as read
   std::string keyPath(const std::string& key) const;
   YAML::Mark markOf(const YAML::Node& n) const;
+  template <class T>
+  T parseWhole(const YAML::Node& n, const std::string& kp, const char* what, const char* tooLarge) const;
   [[noreturn]] void failAt(const YAML::Mark& m, const std::string& keyPath, const std::string& msg) const;
   double toNumber(const YAML::Node& n, const std::string& kp, Range r) const;
   long toInteger(const YAML::Node& n, const std::string& kp, long lo, long hi) const;

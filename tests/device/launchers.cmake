@@ -6,7 +6,9 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   cmake_minimum_required(VERSION 3.20) # script mode: IN_LIST, CMAKE_CURRENT_FUNCTION_LIST_DIR
 endif()
-set(_voigt_not_launchers withLimiter)
+# withLimiter, limiterNamed: host-side choices; scalarFacesXYZ, momentumStage: the shared
+# bodies of launchers that are called (addNodeAdvectionFaces..., momentumStage1/2).
+set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage)
 function(voigt_check_launchers mode)
   get_filename_component(_root "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../.." ABSOLUTE)
   file(GLOB _headers "${_root}/kernels/*.hpp")
