@@ -15,17 +15,7 @@
 
 using namespace voigt;
 
-namespace {
-std::string errorOf(const std::string& yaml) {
-  try {
-    Simulation sim(test::scene(yaml), MPI_COMM_WORLD, RunOptions{});
-    sim.initialize();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-} // namespace
+using test::sceneErrorOf;
 
 TEST(ElasticityScene, NoStressFieldsWithoutElasticity) {
   auto s = test::scene(
@@ -68,17 +58,17 @@ TEST(ElasticityScene, ModuliAndErrors) {
     EXPECT_NEAR(l.dt, 0.5 * (1.0 / 8) / std::sqrt(1000.0 / 100), 1e-15);
     for (const char* k : {"elastic_energy", "max_S2", "stress_cells"}) EXPECT_TRUE(sim.state().diag.count(k)) << k;
   }
-  std::string e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000, youngs_modulus: 3000,"
+  std::string e = sceneErrorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000, youngs_modulus: 3000,"
                                  " poisson_ratio: 0.5}, air: {density: 1}}\n");
   EXPECT_NE(e.find("youngs_modulus"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100, youngs_modulus: 3000}, air: {density: 1}}\n");
+  e = sceneErrorOf(base + "materials: {rubber: {density: 100, youngs_modulus: 3000}, air: {density: 1}}\n");
   EXPECT_NE(e.find("poisson_ratio"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100}, air: {density: 1}}\n");
+  e = sceneErrorOf(base + "materials: {rubber: {density: 100}, air: {density: 1}}\n");
   EXPECT_NE(e.find("shear_modulus"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+  e = sceneErrorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
                      "elasticity: {bnad: 3}\n");
   EXPECT_NE(e.find("bnad"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+  e = sceneErrorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
                      "elasticity: {initial_stress: {xz: 1}}\n");
   EXPECT_NE(e.find("xz"), std::string::npos) << e;
   {
@@ -93,10 +83,10 @@ TEST(ElasticityScene, ModuliAndErrors) {
     el->summary(sim.state(), j);
     EXPECT_EQ(j["elasticity"]["rotation"], "explicit");
   }
-  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+  e = sceneErrorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
                      "elasticity: {rotation: jaumann}\n");
   EXPECT_NE(e.find("rotation"), std::string::npos) << e;
-  e = errorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
+  e = sceneErrorOf(base + "materials: {rubber: {density: 100, shear_modulus: 1000}, air: {density: 1}}\n"
                      "elasticity: {fluid_side: solid}\n");
   EXPECT_NE(e.find("fluid_side"), std::string::npos) << e;
   for (const char* side : {"integrate", "extend", "blend"}) {
@@ -108,6 +98,6 @@ TEST(ElasticityScene, ModuliAndErrors) {
     sim.effect("elasticity")->summary(sim.state(), j);
     EXPECT_EQ(j["elasticity"]["fluid_side"], side);
   }
-  e = errorOf("domain: {cells: [8,8,8]}\neffects: [navier_stokes, elasticity]\noutput: {enabled: false}\n");
+  e = sceneErrorOf("domain: {cells: [8,8,8]}\neffects: [navier_stokes, elasticity]\noutput: {enabled: false}\n");
   EXPECT_NE(e.find("level_set"), std::string::npos) << e;
 }

@@ -209,6 +209,17 @@ Measured measure(const Simulation& sim, double theta, const double replayed[6], 
   return m;
 }
 
+// The measurements both rotation tests report, under key_*.
+void reportMeasured(const std::string& key, const Measured& m, double pred) {
+  test::report(key + "_raw_error_vs_exact", m.errRaw);
+  test::report(key + "_indicator_min", m.sMin);
+  test::report(key + "_indicator_max", m.sMax);
+  test::report(key + "_error_vs_exact", m.errExact);
+  test::report(key + "_predicted_scheme_error", pred);
+  test::report(key + "_error_vs_replayed_scheme", m.errReplay);
+  test::report(key + "_norm_relative_deviation", m.normDev);
+}
+
 // The steps' sizes, recorded as the engine takes them (StepEngine::advanceTo lands on t).
 StepEngine::Each recordDt(std::vector<double>& dts) {
   return [&dts](const State& st) { dts.push_back(st.dt); };
@@ -230,13 +241,7 @@ void rotate(int n, double cfl, const std::string& tag, bool checkPaper, std::vec
     const Measured m = measure(sim, theta, rep, rep);
     const double pred = predictedError(dts);
     const std::string key = tag + "_" + std::to_string(int(deg)) + "deg";
-    test::report(key + "_raw_error_vs_exact", m.errRaw);
-    test::report(key + "_indicator_min", m.sMin);
-    test::report(key + "_indicator_max", m.sMax);
-    test::report(key + "_error_vs_exact", m.errExact);
-    test::report(key + "_predicted_scheme_error", pred);
-    test::report(key + "_error_vs_replayed_scheme", m.errReplay);
-    test::report(key + "_norm_relative_deviation", m.normDev);
+    reportMeasured(key, m, pred);
     test::report(key + "_steps", double(dts.size()));
     test::report(key + "_interior_cells", double(m.cells));
     ASSERT_GT(m.cells, 100);
@@ -278,16 +283,10 @@ std::vector<double> rotateCayley(int n, double cfl, const std::string& tag, std:
     double sumCube = 0;
     for (double dt : dts) sumCube += std::pow(kOmega * dt, 3);
     const std::string key = tag + "_" + std::to_string(int(deg)) + "deg";
-    test::report(key + "_raw_error_vs_exact", m.errRaw);
-    test::report(key + "_indicator_min", m.sMin);
-    test::report(key + "_indicator_max", m.sMax);
-    test::report(key + "_error_vs_exact", m.errExact);
-    test::report(key + "_predicted_scheme_error", pred);
+    reportMeasured(key, m, pred);
     test::report(key + "_discrete_angle_lag_rad", theta - thetaD);
     test::report(key + "_discrete_angle_lag_leading_term_rad", sumCube / 48);
-    test::report(key + "_error_vs_replayed_scheme", m.errReplay);
     test::report(key + "_error_vs_closed_form_discrete_rotation", m.errClosed);
-    test::report(key + "_norm_relative_deviation", m.normDev);
     test::report(key + "_steps", double(dts.size()));
     test::report(key + "_interior_cells", double(m.cells));
     EXPECT_GT(m.cells, 100);

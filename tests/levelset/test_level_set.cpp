@@ -12,6 +12,7 @@
 #include "support/flow.hpp"
 
 using namespace voigt;
+using test::sceneErrorOf;
 
 namespace {
 
@@ -26,15 +27,6 @@ std::string lsScene(const std::string& shape, int n = 24, const std::string& ext
          "output: {enabled: false}\n";
 }
 
-std::string errorOf(const std::string& yaml) {
-  try {
-    Simulation sim(test::scene(yaml), MPI_COMM_WORLD, RunOptions{});
-    sim.initialize();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 // psi at the cell containing x (owned by some rank), reduced to every rank.
 double psiAt(const Simulation& sim, Vec3 x) {
@@ -180,7 +172,7 @@ TEST(LevelSet, SpherePackingFromCsv) {
     os << "0.3,0.5,0.5,0.15\n0.7,0.5,zero,0.15\n";
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  const std::string e = errorOf(lsScene("{type: sphere_packing, file: " + path + "}"));
+  const std::string e = sceneErrorOf(lsScene("{type: sphere_packing, file: " + path + "}"));
   EXPECT_NE(e.find(path + ":2:"), std::string::npos) << e;
   EXPECT_NE(e.find("level_set.shape.file"), std::string::npos) << e;
 }
@@ -189,17 +181,17 @@ TEST(LevelSet, BadScenesNameTheKey) {
   auto has = [](const std::string& e, const std::string& what) {
     EXPECT_NE(e.find(what), std::string::npos) << "message: " << e << "\nexpected: " << what;
   };
-  has(errorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5]}")), "level_set.shape.radius");
-  has(errorOf(lsScene("{type: blob}")), "level_set.shape.type");
-  has(errorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1, radious: 2}")), "level_set.shape.radious");
-  has(errorOf(lsScene("{type: union, of: [{type: sphere, center: [0,0,0], radius: 1}]}")), "level_set.shape.of");
-  has(errorOf(lsScene("{type: box, lo: [0.5,0.5,0.5], hi: [0.6,0.4,0.6]}")), "level_set.shape.hi");
-  has(errorOf(lsScene("{type: plane, point: [0,0,0], normal: [0,0,0]}")), "level_set.shape.normal");
-  has(errorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1}", 16, ", smoothing: -1")),
+  has(sceneErrorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5]}")), "level_set.shape.radius");
+  has(sceneErrorOf(lsScene("{type: blob}")), "level_set.shape.type");
+  has(sceneErrorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1, radious: 2}")), "level_set.shape.radious");
+  has(sceneErrorOf(lsScene("{type: union, of: [{type: sphere, center: [0,0,0], radius: 1}]}")), "level_set.shape.of");
+  has(sceneErrorOf(lsScene("{type: box, lo: [0.5,0.5,0.5], hi: [0.6,0.4,0.6]}")), "level_set.shape.hi");
+  has(sceneErrorOf(lsScene("{type: plane, point: [0,0,0], normal: [0,0,0]}")), "level_set.shape.normal");
+  has(sceneErrorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1}", 16, ", smoothing: -1")),
       "level_set.smoothing");
-  has(errorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1}", 16, ", phase: air")), "level_set.phase");
-  has(errorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1}", 16, ", band: 2")), "level_set.band");
-  has(errorOf(lsScene("{type: sphere_packing, file: /nonexistent.csv}")), "cannot open");
+  has(sceneErrorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1}", 16, ", phase: air")), "level_set.phase");
+  has(sceneErrorOf(lsScene("{type: sphere, center: [0.5,0.5,0.5], radius: 0.1}", 16, ", band: 2")), "level_set.band");
+  has(sceneErrorOf(lsScene("{type: sphere_packing, file: /nonexistent.csv}")), "cannot open");
 }
 
 // Eq. (2): density and viscosity are H-weighted; far inside/outside exact.

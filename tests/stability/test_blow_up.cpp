@@ -34,6 +34,23 @@ std::string runToBlowUp(Simulation& sim) {
   }
   return "";
 }
+
+// checkpoint_<step>.h5, as the checkpointer names it.
+std::string checkpointName(long step) {
+  char name[64];
+  std::snprintf(name, sizeof name, "checkpoint_%09ld.h5", step);
+  return name;
+}
+
+// The message names the last good state at `kept`, written into out/; it loads with that step.
+void expectLastGood(const Scene& s, const TempDir& tmp, const std::string& msg, long kept) {
+  const std::string last = tmp.sub("out/") + checkpointName(kept);
+  EXPECT_NE(msg.find("last good state (step " + std::to_string(kept) + ") written to " + last), std::string::npos)
+      << msg;
+  Simulation good(s, MPI_COMM_WORLD, RunOptions{});
+  good.restore(last);
+  EXPECT_EQ(good.state().step, kept);
+}
 } // namespace
 
 TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
@@ -46,16 +63,10 @@ TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
   EXPECT_NE(msg.find("field 'velocity' component x = "), std::string::npos) << msg;
   EXPECT_NE(msg.find("at node ("), std::string::npos) << msg;
   EXPECT_NE(msg.find("after step " + std::to_string(badStep) + ", t = "), std::string::npos) << msg;
-  char last[64];
-  std::snprintf(last, sizeof last, "checkpoint_%09ld.h5", badStep - 1);
-  EXPECT_NE(msg.find(std::string("last good state (step ") + std::to_string(badStep - 1) + ") written to " +
-                     tmp.sub("out/") + last),
-            std::string::npos)
-      << msg;
-  // The last good state loads and is finite everywhere; one step from it blows up again.
+  expectLastGood(s, tmp, msg, badStep - 1);
+  // The last good state is finite everywhere; one step from it blows up again.
   Simulation good(s, MPI_COMM_WORLD, RunOptions{});
-  good.restore(tmp.sub(std::string("out/") + last));
-  EXPECT_EQ(good.state().step, badStep - 1);
+  good.restore(tmp.sub("out/") + checkpointName(badStep - 1));
   for (auto& n : good.state().fields.allocatedNames()) {
     if (good.state().fields.decls().at(n).isInt) continue;
     const auto& d = good.state().fields.decls().at(n);
@@ -89,14 +100,7 @@ TEST(BlowUp, LastGoodIntervalKeepsAnEarlierState) {
   const std::string msg = runToBlowUp(sim);
   ASSERT_FALSE(msg.empty()) << "no blow-up detected";
   const long kept = (sim.state().step - 1) / 3 * 3;
-  char last[64];
-  std::snprintf(last, sizeof last, "checkpoint_%09ld.h5", kept);
-  EXPECT_NE(msg.find("last good state (step " + std::to_string(kept) + ") written to " + tmp.sub("out/") + last),
-            std::string::npos)
-      << msg;
-  Simulation good(s, MPI_COMM_WORLD, RunOptions{});
-  good.restore(tmp.sub(std::string("out/") + last));
-  EXPECT_EQ(good.state().step, kept);
+  expectLastGood(s, tmp, msg, kept);
 }
 
 // A Poisson solve that reaches projection.max_iterations: counted (warn, the

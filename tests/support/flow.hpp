@@ -16,6 +16,17 @@ inline Scene scene(const std::string& yaml) {
   return loadSceneWithEffectsFromString(yaml, "test");
 }
 
+// The SceneError a scene raises when loaded and set up ("" if none).
+inline std::string sceneErrorOf(const std::string& yaml) {
+  try {
+    Simulation sim(scene(yaml), MPI_COMM_WORLD, RunOptions{});
+    sim.initialize();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 // Position of local node (i,j,k).
 inline Vec3 nodePos(const Grid& g, int i, int j, int k) {
   return {g.lo[0] + g.global(0, i) * g.h[0], g.lo[1] + g.global(1, j) * g.h[1],
