@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "effects/effect.hpp"
 #include "scene/load.hpp"
 #include "scene/presets.hpp"
 #include "scene/reader.hpp"
@@ -13,13 +14,8 @@ using namespace voigt;
 
 namespace {
 
-LoadOptions options(std::vector<std::string> overrides = {}) {
-  LoadOptions o;
-  o.overrides = std::move(overrides);
-  o.knownEffects = {"navier_stokes", "level_set", "reinit", "prescribed_flow"};
-  o.extraSections = {"level_set", "reinit", "prescribed_flow"};
-  return o;
-}
+// As `voigt run` loads a scene: every effect of the registry known.
+LoadOptions options(std::vector<std::string> overrides = {}) { return effectLoadOptions(std::move(overrides)); }
 
 const std::string kBase = "name: p\n"
                           "domain: {lo: [0, 0, 0], hi: [1, 1, 1], cells: [8, 8, 8]}\n"
