@@ -2,8 +2,12 @@
 // Global reductions over owned index ranges (Kokkos reduce + MPI_Allreduce).
 #include <mpi.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
 
 #include "core/field.hpp"
 #include "core/index_space.hpp"
@@ -52,6 +56,85 @@ inline long long countNonFinite(const Field& f, Range3 r) {
         // sign bit exactly when the exponent is all ones (inf or NaN).
         unsigned long long c = 0;
         const double* row = &f(0, j, k);
+#pragma GCC ivdep
+        for (int i = b0; i < e0; ++i) {
+          unsigned long long bits;
+          __builtin_memcpy(&bits, row + i, sizeof bits);
+          c += ((bits & 0x7ff0000000000000ULL) + 0x0010000000000000ULL) >> 63;
+        }
+        acc += static_cast<long long>(c);
+      },
+      n);
+  return n;
+}
+
+// Arrays of one grid's extents, each with its own range (owned cells or nodes): the
+// fields the blow-up check scans every step, as device tables, so that one reduction
+// counts them all (one launch and one fence a step, not one per component).
+struct ArrayBoxes {
+  Kokkos::View<std::uintptr_t*, MemSpace> ptr; // data pointers
+  Kokkos::View<int* [6], MemSpace> box;        // b0, e0, b1, e1, b2, e2
+  std::vector<const double*> host;             // the pointers, to see when an array changes
+  int n = 0;
+  long long sj = 0, sk = 0;                    // the strides of j and k (LayoutLeft, shared)
+  int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};    // the union of the boxes
+};
+
+inline ArrayBoxes arrayBoxes(const std::vector<Field>& fs, const std::vector<Range3>& rs) {
+  ArrayBoxes a;
+  a.n = int(fs.size());
+  a.ptr = Kokkos::View<std::uintptr_t*, MemSpace>("nonfinite::ptr", a.n);
+  a.box = Kokkos::View<int* [6], MemSpace>("nonfinite::box", a.n);
+  auto hp = Kokkos::create_mirror_view(a.ptr);
+  auto hb = Kokkos::create_mirror_view(a.box);
+  for (int q = 0; q < a.n; ++q) {
+    if (q == 0) a.sj = fs[0].stride(1), a.sk = fs[0].stride(2);
+    if (fs[q].stride(0) != 1 || (long long)fs[q].stride(1) != a.sj || (long long)fs[q].stride(2) != a.sk)
+      throw std::logic_error("arrayBoxes: arrays of different extents");
+    a.host.push_back(fs[q].data());
+    hp(q) = reinterpret_cast<std::uintptr_t>(fs[q].data());
+    for (int d = 0; d < 3; ++d) {
+      hb(q, 2 * d) = rs[q].b[d], hb(q, 2 * d + 1) = rs[q].e[d];
+      a.lo[d] = q ? std::min(a.lo[d], rs[q].b[d]) : rs[q].b[d];
+      a.hi[d] = q ? std::max(a.hi[d], rs[q].e[d]) : rs[q].e[d];
+    }
+  }
+  Kokkos::deep_copy(a.ptr, hp);
+  Kokkos::deep_copy(a.box, hb);
+  return a;
+}
+
+// Non-finite values (NaN, +-Inf) in all of a's arrays over their boxes, on this rank:
+// countNonFinite's test (integer, vectorised i-loop on host) in one reduction.
+inline long long countNonFinite(const ArrayBoxes& a) {
+  long long n = 0;
+  if (a.n == 0) return 0;
+  const auto ptr = a.ptr;
+  const auto box = a.box;
+  const long long sj = a.sj, sk = a.sk;
+#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
+  if constexpr (!std::is_same<ExecSpace, Kokkos::DefaultHostExecutionSpace>::value) {
+    using Policy4 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<4, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+    Kokkos::parallel_reduce(
+        "count_non_finite_all", Policy4({a.lo[0], a.lo[1], a.lo[2], 0}, {a.hi[0], a.hi[1], a.hi[2], a.n}),
+        KOKKOS_LAMBDA(int i, int j, int k, int q, long long& acc) {
+          if (i < box(q, 0) || i >= box(q, 1) || j < box(q, 2) || j >= box(q, 3) || k < box(q, 4) || k >= box(q, 5))
+            return;
+          const double v = reinterpret_cast<const double*>(ptr(q))[i + sj * j + sk * k];
+          acc += !(v - v == 0);
+        },
+        n);
+    return n;
+  }
+#endif
+  using Policy3q = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+  Kokkos::parallel_reduce(
+      "count_non_finite_all", Policy3q({a.lo[1], a.lo[2], 0}, {a.hi[1], a.hi[2], a.n}, {1, 1, 1}),
+      KOKKOS_LAMBDA(int j, int k, int q, long long& acc) {
+        if (j < box(q, 2) || j >= box(q, 3) || k < box(q, 4) || k >= box(q, 5)) return;
+        const double* row = reinterpret_cast<const double*>(ptr(q)) + sj * j + sk * k;
+        const int b0 = box(q, 0), e0 = box(q, 1);
+        unsigned long long c = 0; // as countNonFinite(Field, Range3): exponent all ones
 #pragma GCC ivdep
         for (int i = b0; i < e0; ++i) {
           unsigned long long bits;

@@ -84,14 +84,22 @@ void StepEngine::checkFinite() const {
   const Grid& g = st_.grid;
   // Fast path, every step: one count over all fields and one Allreduce. Only a
   // blow-up pays for the search below (a reduction and Allreduces per field).
-  long long local = 0, total = 0;
+  // The tables of every real field component and its owned range, rebuilt when an array changes.
+  std::vector<Field> arrays;
+  std::vector<Range3> ranges;
   for (auto& name : st_.fields.allocatedNames()) {
     auto d = st_.fields.decls().at(name);
     if (d.isInt) continue;
     const Range3 r = d.centring == Centring::Cell ? cellRange(g) : nodeRange(g);
-    if (d.components == 1) local += countNonFinite(st_.fields.scalar(name), r);
-    else for (int c = 0; c < 3; ++c) local += countNonFinite(st_.fields.vector(name).c[c], r);
+    for (int c = 0; c < d.components; ++c) {
+      arrays.push_back(d.components == 1 ? st_.fields.scalar(name) : st_.fields.vector(name).c[c]);
+      ranges.push_back(r);
+    }
   }
+  bool same = scan_ && int(arrays.size()) == scan_->n;
+  for (size_t q = 0; same && q < arrays.size(); ++q) same = arrays[q].data() == scan_->host[q];
+  if (!same) scan_ = std::make_shared<ArrayBoxes>(arrayBoxes(arrays, ranges));
+  long long local = countNonFinite(*scan_), total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
   if (total == 0) return;
   std::vector<std::string> bad; // every non-finite field component, with its first point

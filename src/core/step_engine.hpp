@@ -9,11 +9,12 @@
 //   with 1e-9 relative slack so that no sliver step is left.
 //
 // A step runs the stages of kStepStages in order, advances t and the step count,
-// checks every field for non-finite values (one count and one Allreduce; BlowUp names
+// checks every field for non-finite values (one fused count and one Allreduce; BlowUp names
 // the first bad point of each field), honours State::stopRequest, then the after-step
 // hooks run (diagnostics of the finished step, e.g. the kinetic energy).
 #include <functional>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -22,6 +23,8 @@
 #include "core/state.hpp"
 
 namespace voigt {
+
+struct ArrayBoxes;
 
 // A run stopped because a field went non-finite or dt collapsed; what() names
 // the field, the cell (global i, j, k), the time, and where the last good
@@ -68,6 +71,7 @@ class StepEngine {
   TimeCfg time_;
   std::vector<Limit> limits_;
   std::vector<Hook> after_;
+  mutable std::shared_ptr<ArrayBoxes> scan_; // the arrays checkFinite scans (kernels/reductions.hpp)
 };
 
 } // namespace voigt

@@ -140,6 +140,12 @@ void projectionStressReductions(const Grid& g, Fields& f) {
   put("addStressDivergence", sumAbs(f.rhs, nodes));
   put("globalMaxAbs", globalMaxAbs(g, f.p, cells));
   put("countNonFinite", double(countNonFinite(f.p, cells)));
+  { // the fused count over several arrays: one planted Inf in a copy of p, none in u.x
+    Field q("q", g.ext[0], g.ext[1], g.ext[2]);
+    Kokkos::deep_copy(q, f.p);
+    Kokkos::deep_copy(Kokkos::subview(q, cells.b[0] + 1, cells.b[1] + 2, cells.b[2] + 1), 1.0 / 0.0);
+    put("countNonFiniteAll", double(countNonFinite(arrayBoxes({q, f.u.c[0]}, {cells, nodes}))));
+  }
   put("globalSum", globalSum(g, 0.25));
   put("kineticEnergy", kineticEnergy(g, f.u, f.rho));
 }
