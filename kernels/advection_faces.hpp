@@ -130,14 +130,19 @@ KOKKOS_FORCEINLINE_FUNCTION void scalarSum(const Kokkos::View<double****, Kokkos
   const double ap = F(ip, jp, kp, s0), am = F(i, j, k, s0);
   tend -= (F(ip, jp, kp, s0 + 1) - F(i, j, k, s0 + 1) - q0 * (ap - am)) / h;
 }
-// The face fluxes of q along the three axes into F (Cell: q at cell centres).
-template <bool Cell, class Flux>
-inline void scalarFacesXYZ(const Field& q, const VecField& v, Range3 r, Limiter limiter, const Flux& F) {
+// The face fluxes of q along the three axes into the scratch's slots (Cell: q at cell
+// centres); returns the flux view.
+template <bool Cell>
+inline auto scalarFacesXYZ(const Grid& g, const Field& q, const VecField& v, Range3 r, Limiter limiter,
+                           FluxScratch& scratch) {
+  scratch.reserve(g, 6);
+  auto F = scratch.F;
   withLimiter(limiter, [&](auto L) {
     scalarFaces<0, Cell, decltype(L)::value>(q, v.c[0], r, F);
     scalarFaces<1, Cell, decltype(L)::value>(q, v.c[1], r, F);
     scalarFaces<2, Cell, decltype(L)::value>(q, v.c[2], r, F);
   });
+  return F;
 }
 
 // The advective tendency of q at (i, j, k) from the three axes' face fluxes.
@@ -154,9 +159,7 @@ KOKKOS_FORCEINLINE_FUNCTION double scalarTendency(const Flux& F, int i, int j, i
 
 inline void addNodeAdvectionFaces(const Grid& g, const Field& q, const VecField& v, const Field& rhs, Range3 nodes,
                                   Limiter limiter, FluxScratch& scratch, bool assign = false) {
-  scratch.reserve(g, 6);
-  auto F = scratch.F;
-  faces::scalarFacesXYZ<false>(q, v, nodes, limiter, F);
+  const auto F = faces::scalarFacesXYZ<false>(g, q, v, nodes, limiter, scratch);
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "node_advection_sum", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
@@ -179,9 +182,7 @@ inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const Ve
 // than one kernel over all of them, perf/README.md). Slots: 2 d + {0: speed, 1: F}.
 inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, const VecField& v, Range3 cells,
                                  Limiter limiter, double dt, double a, bool storeOld, FluxScratch& scratch) {
-  scratch.reserve(g, 6);
-  auto F = scratch.F;
-  faces::scalarFacesXYZ<true>(q, v, cells, limiter, F);
+  const auto F = faces::scalarFacesXYZ<true>(g, q, v, cells, limiter, scratch);
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "cell_advection_rk2", cells, KOKKOS_LAMBDA(int i, int j, int k) {

@@ -270,15 +270,14 @@ inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField
 inline void addSolidStress(const Grid& g, const Field& psi, double kappa, const SymTensorField& solid,
                            const SymTensorField& tau, const IntList& cell, int n) {
   if (n == 0) return;
-  const Unpack up{g.ext[0], g.ext[1]};
-  const SymTensorField s = solid, t = tau;
+  const FlatField fpsi = flat(psi);
+  const FlatSym s = flatSym(solid), t = flatSym(tau);
   Kokkos::parallel_for(
-      "elastic_add_stress", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        const double H = smoothedHeaviside(psi(i, j, k), kappa);
+      "elastic_add_stress", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
+        const int p = cell(q); // the packed index is the memory offset
+        const double H = smoothedHeaviside(fpsi(p), kappa);
         VOIGT_UNROLL
-        for (int c = 0; c < 6; ++c) t.c[c](i, j, k) += H * s.c[c](i, j, k);
+        for (int c = 0; c < 6; ++c) t.c[c](p) += H * s.c[c](p);
       });
 }
 

@@ -47,15 +47,14 @@ inline int fluidSide(const Field& psi, const Grid& g, const IntList& cell, int n
 inline void copySolidSide(const Grid& g, const Field& psi, const SymTensorField& src, const SymTensorField& dst,
                           const IntList& cell, int n, double below) {
   if (n == 0) return;
-  const Unpack up{g.ext[0], g.ext[1]};
-  const SymTensorField s = src, d = dst;
+  const FlatField fpsi = flat(psi);
+  const FlatSym s = flatSym(src), d = flatSym(dst);
   Kokkos::parallel_for(
-      "extension_copy_solid", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        if (psi(i, j, k) > below) {
+      "extension_copy_solid", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
+        const int p = cell(q); // the packed index is the memory offset
+        if (fpsi(p) > below) {
           VOIGT_UNROLL
-          for (int c = 0; c < 6; ++c) d.c[c](i, j, k) = s.c[c](i, j, k);
+          for (int c = 0; c < 6; ++c) d.c[c](p) = s.c[c](p);
         }
       });
 }

@@ -30,6 +30,20 @@ inline double globalMaxAbs(const Grid& g, const Field& f, Range3 r) {
   return out;
 }
 
+// Non-finite values in row[b0, e0), host form. Integer, which vectorises (SSE2 has
+// 64-bit add, and, shift but no 64-bit compare): adding 1 to the exponent field carries
+// into the sign bit exactly when the exponent is all ones (inf or NaN).
+KOKKOS_INLINE_FUNCTION long long nonFiniteInRow(const double* row, int b0, int e0) {
+  unsigned long long c = 0;
+#pragma GCC ivdep
+  for (int i = b0; i < e0; ++i) {
+    unsigned long long bits;
+    __builtin_memcpy(&bits, row + i, sizeof bits);
+    c += ((bits & 0x7ff0000000000000ULL) + 0x0010000000000000ULL) >> 63;
+  }
+  return static_cast<long long>(c);
+}
+
 // Non-finite values (NaN, +-Inf) of f over r on this rank. The per-step blow-up
 // check: an integer count, so the i-loop vectorises on host (no FP reduction).
 inline long long countNonFinite(const Field& f, Range3 r) {
@@ -50,20 +64,7 @@ inline long long countNonFinite(const Field& f, Range3 r) {
   const int b0 = r.b[0], e0 = r.e[0];
   Kokkos::parallel_reduce(
       "count_non_finite", Policy2({r.b[1], r.b[2]}, {r.e[1], r.e[2]}, {1, 1}),
-      KOKKOS_LAMBDA(int j, int k, long long& acc) {
-        // Integer form, which vectorises (SSE2 has 64-bit add, and, shift but
-        // no 64-bit compare): adding 1 to the exponent field carries into the
-        // sign bit exactly when the exponent is all ones (inf or NaN).
-        unsigned long long c = 0;
-        const double* row = &f(0, j, k);
-#pragma GCC ivdep
-        for (int i = b0; i < e0; ++i) {
-          unsigned long long bits;
-          __builtin_memcpy(&bits, row + i, sizeof bits);
-          c += ((bits & 0x7ff0000000000000ULL) + 0x0010000000000000ULL) >> 63;
-        }
-        acc += static_cast<long long>(c);
-      },
+      KOKKOS_LAMBDA(int j, int k, long long& acc) { acc += nonFiniteInRow(&f(0, j, k), b0, e0); },
       n);
   return n;
 }
@@ -132,16 +133,7 @@ inline long long countNonFinite(const ArrayBoxes& a) {
       "count_non_finite_all", Policy3q({a.lo[1], a.lo[2], 0}, {a.hi[1], a.hi[2], a.n}, {1, 1, 1}),
       KOKKOS_LAMBDA(int j, int k, int q, long long& acc) {
         if (j < box(q, 2) || j >= box(q, 3) || k < box(q, 4) || k >= box(q, 5)) return;
-        const double* row = reinterpret_cast<const double*>(ptr(q)) + sj * j + sk * k;
-        const int b0 = box(q, 0), e0 = box(q, 1);
-        unsigned long long c = 0; // as countNonFinite(Field, Range3): exponent all ones
-#pragma GCC ivdep
-        for (int i = b0; i < e0; ++i) {
-          unsigned long long bits;
-          __builtin_memcpy(&bits, row + i, sizeof bits);
-          c += ((bits & 0x7ff0000000000000ULL) + 0x0010000000000000ULL) >> 63;
-        }
-        acc += static_cast<long long>(c);
+        acc += nonFiniteInRow(reinterpret_cast<const double*>(ptr(q)) + sj * j + sk * k, box(q, 0), box(q, 1));
       },
       n);
   return n;

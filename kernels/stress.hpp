@@ -14,6 +14,17 @@ struct SymTensorField {
   Field c[6];
 };
 
+// The six components as flat views (core/index_space.hpp): kernels over packed cell
+// lists address a cell by its packed index, which is its memory offset.
+struct FlatSym {
+  FlatField c[6];
+};
+inline FlatSym flatSym(const SymTensorField& t) {
+  FlatSym f;
+  for (int c = 0; c < 6; ++c) f.c[c] = flat(t.c[c]);
+  return f;
+}
+
 // L_ij = du_i/dx_j at the centre of local cell (i,j,k).
 KOKKOS_INLINE_FUNCTION void cellVelocityGradient(const GridGeom& G, const VecField& u, int i, int j,
                                                  int k, double L[3][3]) {

@@ -8,7 +8,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 # withLimiter, limiterNamed: host-side choices; scalarFacesXYZ, momentumStage: the shared
 # bodies of launchers that are called (addNodeAdvectionFaces..., momentumStage1/2).
-set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage)
+set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage flatSym)
 function(voigt_check_launchers mode)
   get_filename_component(_root "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../.." ABSOLUTE)
   file(GLOB _headers "${_root}/kernels/*.hpp")
