@@ -25,12 +25,7 @@ void markFace(const Grid& g, int face, const FaceBc& bc, const IntField& mask, c
   const double v0 = bc.type == BcType::Slip ? 0 : v[0];
   const double v1 = bc.type == BcType::Slip ? 0 : v[1];
   const double v2 = bc.type == BcType::Slip ? 0 : v[2];
-  for_each3("mark_face", r, KOKKOS_LAMBDA(int i, int j, int k) {
-        mask(i, j, k) |= full;
-        if (full & 1) val.c[0](i, j, k) = v0;
-        if (full & 2) val.c[1](i, j, k) = v1;
-        if (full & 4) val.c[2](i, j, k) = v2;
-      });
+  markNodes(mask, val, r, full, v0, v1, v2);
 }
 
 void markFaces(const Grid& g, const Scene& s, const IntField& mask, const VecField& val, double t) {
@@ -70,47 +65,14 @@ void refreshWallValues(const Grid& g, const Scene& s, const IntField& mask, cons
 
 void addObstacleMask(const Grid& g, const std::vector<Obstacle>& obs, const IntField& mask,
                      const VecField& val) {
-  const int ng = g.ng;
-  const double lo0 = g.lo[0], lo1 = g.lo[1], lo2 = g.lo[2];
-  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
-  const int c00 = g.c0[0], c01 = g.c0[1], c02 = g.c0[2];
   for (const Obstacle& o : obs) {
-    const int kind = static_cast<int>(o.kind), ax = o.axis;
-    const double cx = o.center[0], cy = o.center[1], cz = o.center[2], r = o.radius;
-    const double bx0 = o.lo[0], by0 = o.lo[1], bz0 = o.lo[2], bx1 = o.hi[0], by1 = o.hi[1], bz1 = o.hi[2];
-    const double vx = o.velocity[0], vy = o.velocity[1], vz = o.velocity[2];
-    Kokkos::parallel_for(
-        "obstacle_mask", Policy3({0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}),
-        KOKKOS_LAMBDA(int i, int j, int k) {
-          const double x = lo0 + (i - ng + c00) * h0, y = lo1 + (j - ng + c01) * h1,
-                       z = lo2 + (k - ng + c02) * h2;
-          const double dx = x - cx, dy = y - cy, dz = z - cz;
-          bool inside = false;
-          if (kind == static_cast<int>(Obstacle::Kind::Sphere)) {
-            inside = dx * dx + dy * dy + dz * dz <= r * r;
-          } else if (kind == static_cast<int>(Obstacle::Kind::Cylinder)) {
-            const double d2 = ax == 0 ? dy * dy + dz * dz : ax == 1 ? dx * dx + dz * dz : dx * dx + dy * dy;
-            inside = d2 <= r * r;
-          } else {
-            inside = x >= bx0 && x <= bx1 && y >= by0 && y <= by1 && z >= bz0 && z <= bz1;
-          }
-          if (inside) {
-            mask(i, j, k) = 7;
-            val.c[0](i, j, k) = vx;
-            val.c[1](i, j, k) = vy;
-            val.c[2](i, j, k) = vz;
-          }
-        });
+    ObstacleShape k;
+    k.kind = o.kind == Obstacle::Kind::Sphere ? 0 : o.kind == Obstacle::Kind::Cylinder ? 1 : 2;
+    k.axis = o.axis;
+    k.r = o.radius;
+    for (int d = 0; d < 3; ++d) k.c[d] = o.center[d], k.lo[d] = o.lo[d], k.hi[d] = o.hi[d], k.v[d] = o.velocity[d];
+    addObstacleNodes(g, k, mask, val);
   }
-}
-
-void applyFixed(const IntField& mask, const VecField& val, const VecField& u, Range3 nodes) {
-  for_each3("apply_fixed", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-        const int m = mask(i, j, k);
-        if (m & 1) u.c[0](i, j, k) = val.c[0](i, j, k);
-        if (m & 2) u.c[1](i, j, k) = val.c[1](i, j, k);
-        if (m & 4) u.c[2](i, j, k) = val.c[2](i, j, k);
-      });
 }
 
 void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u) {
@@ -130,26 +92,9 @@ void fillVelocityGhosts(const Grid& g, const Scene& s, const VecField& u) {
       Range3 r{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};
       r.b[d] = 0;
       r.e[d] = 1; // iterate the face plane; ghosts handled inside
-      const int ng = g.ng, ext = g.ext[d];
       VOIGT_UNROLL
-      for (int c = 0; c < 3; ++c) {
-        auto f = u.c[c];
-        const int oddc = odd[c];
-        for_each3("velocity_ghosts", r, KOKKOS_LAMBDA(int i, int j, int k) {
-              int idx[3] = {i, j, k};
-              auto at = [&](int l) -> double& {
-                idx[d] = l;
-                return f(idx[0], idx[1], idx[2]);
-              };
-              const double ub = at(lb);
-              for (int m = 1; m <= ng; ++m) {
-                const int lg = lb + dir * m, li = lb - dir * m;
-                if (lg < 0 || lg >= ext) continue;
-                const double ui = at(li);
-                at(lg) = outflow ? ub : (oddc ? 2 * ub - ui : ui);
-              }
-            });
-      }
+      for (int c = 0; c < 3; ++c)
+        mirrorNodeGhosts(u.c[c], r, d, lb, dir, g.ng, g.ext[d], odd[c], outflow, "velocity_ghosts");
     }
   }
 }
@@ -164,18 +109,7 @@ void fillNodeGhostsEven(const Grid& g, const Field& f) {
       Range3 r{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};
       r.b[d] = 0;
       r.e[d] = 1;
-      const int ng = g.ng, ext = g.ext[d];
-      for_each3("node_ghosts_even", r, KOKKOS_LAMBDA(int i, int j, int k) {
-            int idx[3] = {i, j, k};
-            for (int m = 1; m <= ng; ++m) {
-              const int lg = lb + dir * m, li = lb - dir * m;
-              if (lg < 0 || lg >= ext) continue;
-              idx[d] = li;
-              const double v = f(idx[0], idx[1], idx[2]);
-              idx[d] = lg;
-              f(idx[0], idx[1], idx[2]) = v;
-            }
-          });
+      mirrorNodeGhosts(f, r, d, lb, dir, g.ng, g.ext[d], 0, false, "node_ghosts_even");
     }
   }
 }
@@ -208,9 +142,7 @@ void fillCellGhostsEven(const Grid& g, const Field& f, const Range3& reads) {
       r.e[d] = side == 0 ? first : last + 1 + g.ng;
       if (side == 0 ? across.b[d] >= first : across.e[d] <= last + 1) continue; // no ghost of this side read
       const int M = side == 0 ? 2 * first - 1 : 2 * last + 1;
-      for_each3("cell_ghosts", r, KOKKOS_LAMBDA(int i, int j, int k) {
-            f(i, j, k) = f(d == 0 ? M - i : i, d == 1 ? M - j : j, d == 2 ? M - k : k);
-          });
+      mirrorCellGhosts(f, r, d, M);
     }
   }
 }

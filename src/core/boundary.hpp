@@ -8,6 +8,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/index_space.hpp"
+#include "kernels/boundary.hpp"
 #include "scene/scene.hpp"
 
 namespace voigt {
@@ -23,8 +24,7 @@ void refreshWallValues(const Grid& g, const Scene& s, const IntField& mask, cons
 // Adds the obstacles (all components, their velocity) to the mask.
 void addObstacleMask(const Grid& g, const std::vector<Obstacle>& obs, const IntField& mask,
                      const VecField& val);
-// u = val where prescribed, over the given nodes.
-void applyFixed(const IntField& mask, const VecField& val, const VecField& u, Range3 nodes);
+// applyFixed (u = val where prescribed): kernels/boundary.hpp.
 // Ghost nodes beyond physical faces, for the MUSCL stencil: odd reflection about
 // the boundary value for prescribed components, even for free ones (outflow,
 // slip tangential). Call after the halo exchange.

@@ -26,6 +26,7 @@
 
 #include "kernels/advection.hpp"
 #include "kernels/advection_faces.hpp"
+#include "kernels/boundary.hpp"
 #include "kernels/elastic.hpp"
 #include "kernels/extension.hpp"
 #include "kernels/heaviside.hpp"
@@ -234,6 +235,39 @@ int compare(const std::string& ref, double rtol) {
   return bad ? 1 : 0;
 }
 
+// Boundary kernels on copies (the others' fields stay as they were): face marks, an
+// obstacle, prescribed values, node ghosts (odd, even, outflow) and cell ghosts along x.
+void boundaries(const Grid& g, Fields& f) {
+  const Range3 nodes = nodeRange(g), all{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}};
+  IntField mask("mask", g.ext[0], g.ext[1], g.ext[2]);
+  VecField val, u;
+  for (int c = 0; c < 3; ++c) {
+    val.c[c] = mk(g, "val"), u.c[c] = mk(g, "ub");
+    Kokkos::deep_copy(u.c[c], f.u.c[c]);
+  }
+  Range3 face = all;
+  face.b[0] = g.ng, face.e[0] = g.ng + 1;
+  markNodes(mask, val, face, 7, 0.5, -0.25, 0.125);
+  ObstacleShape o;
+  o.kind = 1, o.axis = 2, o.c[0] = 0.5, o.c[1] = 0.4, o.r = 0.15, o.v[0] = 0.3;
+  addObstacleNodes(g, o, mask, val);
+  applyFixed(mask, val, u, nodes);
+  put("markNodes+addObstacleNodes+applyFixed", sumAbs(u, nodes));
+  Range3 plane = all;
+  plane.b[0] = 0, plane.e[0] = 1;
+  const int lo = g.ng, hi = g.local(0, g.n[0]);
+  mirrorNodeGhosts(u.c[0], plane, 0, lo, -1, g.ng, g.ext[0], 1, false);
+  mirrorNodeGhosts(u.c[1], plane, 0, hi, 1, g.ng, g.ext[0], 0, false);
+  mirrorNodeGhosts(u.c[2], plane, 0, hi, 1, g.ng, g.ext[0], 0, true);
+  put("mirrorNodeGhosts", sumAbs(u, all));
+  Field q = mk(g, "qb");
+  Kokkos::deep_copy(q, f.p);
+  Range3 ghosts = all;
+  ghosts.b[0] = 0, ghosts.e[0] = g.ng;
+  mirrorCellGhosts(q, ghosts, 0, 2 * g.ng - 1);
+  put("mirrorCellGhosts", sumAbs(q, all));
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -268,6 +302,7 @@ int main(int argc, char** argv) {
       elasticity(g, f);
       reinitialisation(g, f);
       check::effects(g, f); // kernels_effects.cpp
+      boundaries(g, f);
     }
     freeGrid(g);
     std::printf("voigt_kernels_all: Kokkos %s, %zu checksums\n", Kokkos::DefaultExecutionSpace::name(), gSums.size());
