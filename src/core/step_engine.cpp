@@ -82,20 +82,27 @@ void StepEngine::advanceSteps(long n, double dt, const Each& each) {
 
 void StepEngine::checkFinite() const {
   const Grid& g = st_.grid;
-  // Fast path, every step: one count over all fields and one Allreduce. Only a
-  // blow-up pays for the search below (a reduction and Allreduces per field).
-  // The tables of every real field component and its owned range, rebuilt when an array changes.
+  // Every real field component with its owned range, enumerated once for both paths.
+  struct Component {
+    std::string name;
+    int c, components;
+    bool cell;
+  };
+  std::vector<Component> comps;
   std::vector<Field> arrays;
   std::vector<Range3> ranges;
   for (auto& name : st_.fields.allocatedNames()) {
     auto d = st_.fields.decls().at(name);
     if (d.isInt) continue;
-    const Range3 r = d.centring == Centring::Cell ? cellRange(g) : nodeRange(g);
+    const bool cell = d.centring == Centring::Cell;
     for (int c = 0; c < d.components; ++c) {
+      comps.push_back({name, c, d.components, cell});
       arrays.push_back(d.components == 1 ? st_.fields.scalar(name) : st_.fields.vector(name).c[c]);
-      ranges.push_back(r);
+      ranges.push_back(cell ? cellRange(g) : nodeRange(g));
     }
   }
+  // Fast path, every step: one fused count (tables rebuilt when an array changes) and one
+  // Allreduce. Only a blow-up pays for the search below (a reduction and Allreduces each).
   bool same = scan_ && int(arrays.size()) == scan_->n;
   for (size_t q = 0; same && q < arrays.size(); ++q) same = arrays[q].data() == scan_->host[q];
   if (!same) scan_ = std::make_shared<ArrayBoxes>(arrayBoxes(arrays, ranges));
@@ -103,37 +110,29 @@ void StepEngine::checkFinite() const {
   MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
   if (total == 0) return;
   std::vector<std::string> bad; // every non-finite field component, with its first point
-  for (auto& name : st_.fields.allocatedNames()) {
-    auto d = st_.fields.decls().at(name);
-    if (d.isInt) continue;
-    std::vector<Field> comps;
-    if (d.components == 1) comps.push_back(st_.fields.scalar(name));
-    else for (int c = 0; c < 3; ++c) comps.push_back(st_.fields.vector(name).c[c]);
-    const Range3 r = d.centring == Centring::Cell ? cellRange(g) : nodeRange(g);
-    const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
-    for (int c = 0; c < int(comps.size()); ++c) {
-      const Field f = comps[c];
-      const long long first = firstNonFinite(g, f, r);
-      long long gfirst = first;
-      MPI_Allreduce(&first, &gfirst, 1, MPI_LONG_LONG, MPI_MIN, g.comm);
-      if (gfirst == LLONG_MAX) continue;
-      const int gi = int(gfirst % nx), gj = int((gfirst / nx) % ny), gk = int(gfirst / (nx * ny));
-      double v = 0;
-      if (first == gfirst) {
-        auto h = Kokkos::create_mirror_view_and_copy(
-            Kokkos::HostSpace(), Kokkos::subview(f, g.local(0, gi), g.local(1, gj), g.local(2, gk)));
-        v = h();
-      }
-      int mine = first == gfirst ? g.rank : g.size, owner = 0;
-      MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, g.comm);
-      MPI_Bcast(&v, 1, MPI_DOUBLE, owner, g.comm);
-      std::ostringstream os;
-      os << "field '" << name << "'";
-      if (comps.size() == 3) os << " component " << "xyz"[c];
-      os << " = " << v << " at " << (d.centring == Centring::Cell ? "cell" : "node") << " (" << gi << ", " << gj
-         << ", " << gk << ")";
-      bad.push_back(os.str());
+  const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
+  for (size_t q = 0; q < arrays.size(); ++q) {
+    const Field f = arrays[q];
+    const long long first = firstNonFinite(g, f, ranges[q]);
+    long long gfirst = first;
+    MPI_Allreduce(&first, &gfirst, 1, MPI_LONG_LONG, MPI_MIN, g.comm);
+    if (gfirst == LLONG_MAX) continue;
+    const int gi = int(gfirst % nx), gj = int((gfirst / nx) % ny), gk = int(gfirst / (nx * ny));
+    double v = 0;
+    if (first == gfirst) {
+      auto h = Kokkos::create_mirror_view_and_copy(
+          Kokkos::HostSpace(), Kokkos::subview(f, g.local(0, gi), g.local(1, gj), g.local(2, gk)));
+      v = h();
     }
+    int mine = first == gfirst ? g.rank : g.size, owner = 0;
+    MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, g.comm);
+    MPI_Bcast(&v, 1, MPI_DOUBLE, owner, g.comm);
+    const Component& k = comps[q];
+    std::ostringstream os;
+    os << "field '" << k.name << "'";
+    if (k.components == 3) os << " component " << "xyz"[k.c];
+    os << " = " << v << " at " << (k.cell ? "cell" : "node") << " (" << gi << ", " << gj << ", " << gk << ")";
+    bad.push_back(os.str());
   }
   if (bad.empty()) return;
   std::ostringstream os;
