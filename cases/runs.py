@@ -4,6 +4,7 @@ each long run got is known even when the machine that ran it is gone. Used by ca
     runs.py id SCENE MODULUS MODEL [KEY=VALUE ...]   -> "RUN_ID GRID MODEL+CORRECTION" (the --set values win)
     runs.py seconds DURATION                         -> seconds (3h, 170m, 3600s, 3600, 02:50:00)
     runs.py state DIR                                -> new | unfinished | finished | failed
+    runs.py recorded LEDGER RUN_ID                   -> the ledger row's state ("" if none)
     runs.py start LEDGER RUN_ID MODULUS MODEL GRID RANKS   (the row says "running")
     runs.py end LEDGER RUN_ID DIR EXIT_CODE SINCE_EPOCH    (the row from DIR/summary.json)
     runs.py table LEDGER [RUN_ID ...]                -> Markdown
@@ -116,6 +117,15 @@ def end(ledger, rid, path, code, since):
     update(ledger, rid, values)
 
 
+def recorded(ledger, rid):
+    """The ledger's word on a run: what a fresh machine (no outputs) knows of it."""
+    if not os.path.exists(ledger):
+        return ""
+    with open(ledger, newline="") as f:
+        row = next((r for r in csv.DictReader(f) if r.get("run_id") == rid), None)
+    return "" if row is None else row.get("state", "")
+
+
 def table(ledger, ids):
     with open(ledger, newline="") as f:
         rows = [r for r in csv.DictReader(f) if not ids or r.get("run_id") in ids]
@@ -137,6 +147,8 @@ def main(argv):
             sys.exit("run: --wall-limit '%s' is not a duration (3h, 170m, 3600s, 3600, 02:50:00)" % args[0])
     elif cmd == "state":
         print(state(args[0]))
+    elif cmd == "recorded":
+        print(recorded(args[0], args[1]))
     elif cmd == "start":
         update(args[0], args[1], dict(zip(["modulus", "model", "grid", "ranks"], args[2:6]), state="running"))
     elif cmd == "end":

@@ -79,7 +79,7 @@ study_stop() {
 # ledger cases/<name>/runs.csv; --resume continues the unfinished runs there first (selected
 # or not: their .args say how), then starts those not begun, and skips the finished.
 study_runs() {
-  local sets mu model id grid tagged name st all wl fresh=() failed=0
+  local sets mu model id grid tagged name st rec all wl fresh=() failed=0
   todo=()  # also read by study_stop
   name="$(basename "$(dirname "$study_scene")")"
   runs="$root/cases/runs.py"
@@ -113,6 +113,12 @@ study_runs() {
       selected+=("$id")
       st=$("$py" "$runs" state "$out/$id")
       if [ "$resume" = 1 ] && [ "$st" = finished ]; then echo "== $id: finished, skipped"; continue; fi
+      # A machine that did not keep the outputs: the committed ledger still knows.
+      if [ "$resume" = 1 ] && [ "$st" = new ]; then
+        rec=$("$py" "$runs" recorded "$ledger" "$id")
+        if [ "$rec" = finished ]; then echo "== $id: finished (ledger; its output is not on this machine), skipped"; continue; fi
+        if [ -n "$rec" ]; then echo "== $id: ledger says '$rec', but no checkpoint in $out/$id: starting again"; fi
+      fi
       if [ "$resume" = 1 ] && [ "$st" = unfinished ] && [ -f "$out/$id.args" ]; then continue; fi
       printf '%s\n' "$mu $tagged $grid" "${all[@]}" > "$out/$id.args"
       if [ "$resume" = 1 ] && [ "$st" = unfinished ]; then todo+=("$id"); else fresh+=("$id"); fi
