@@ -272,9 +272,7 @@ inline void addSolidStress(const Grid& g, const Field& psi, double kappa, const 
   if (n == 0) return;
   const FlatField fpsi = flat(psi);
   const FlatSym s = flatSym(solid), t = flatSym(tau);
-  Kokkos::parallel_for(
-      "elastic_add_stress", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        const int p = cell(q); // the packed index is the memory offset
+  for_listed("elastic_add_stress", cell, n, KOKKOS_LAMBDA(int, int p) {
         const double H = smoothedHeaviside(fpsi(p), kappa);
         VOIGT_UNROLL
         for (int c = 0; c < 6; ++c) t.c[c](p) += H * s.c[c](p);
@@ -351,8 +349,8 @@ inline void stressDiagnostics(const Grid& g, const SymTensorField& tau, const Fi
         const double xy = t.c[3](i, j, k), yz = t.c[4](i, j, k), zx = t.c[5](i, j, k);
         const double s2 = secondInvariant(xx, yy, zz, xy, yz, zx);
         S2(i, j, k) = s2;
-        const double a = std::fabs(s2);
-        lg(i, j, k) = std::log10(a > floorS2 ? a : floorS2);
+        const double a = km::fabs(s2);
+        lg(i, j, k) = km::log10(a > floorS2 ? a : floorS2);
         const double H = smoothedHeaviside(psi(i, j, k), kappa);
         sum += H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
       },
@@ -362,7 +360,7 @@ inline void stressDiagnostics(const Grid& g, const SymTensorField& tau, const Fi
       KOKKOS_LAMBDA(int p, double& mx) {
         int i, j, k;
         up(cell(p), i, j, k);
-        const double a = psi(i, j, k) > 0 ? std::fabs(S2(i, j, k)) : 0.0; // inside the solid only
+        const double a = psi(i, j, k) > 0 ? km::fabs(S2(i, j, k)) : 0.0; // inside the solid only
         if (a > mx) mx = a;
       },
       Kokkos::Max<double>(m));

@@ -49,9 +49,7 @@ inline void copySolidSide(const Grid& g, const Field& psi, const SymTensorField&
   if (n == 0) return;
   const FlatField fpsi = flat(psi);
   const FlatSym s = flatSym(src), d = flatSym(dst);
-  Kokkos::parallel_for(
-      "extension_copy_solid", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        const int p = cell(q); // the packed index is the memory offset
+  for_listed("extension_copy_solid", cell, n, KOKKOS_LAMBDA(int, int p) {
         if (fpsi(p) > below) {
           VOIGT_UNROLL
           for (int c = 0; c < 6; ++c) d.c[c](p) = s.c[c](p);
@@ -82,9 +80,7 @@ inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, co
   for (int c = 0; c < 6; ++c) s[c] = flat(src.c[c]), d[c] = flat(dst.c[c]);
   const FlatField s0 = s[0], s1 = s[1], s2 = s[2], s3 = s[3], s4 = s[4], s5 = s[5];
   const FlatField d0 = d[0], d1 = d[1], d2 = d[2], d3 = d[3], d4 = d[4], d5 = d[5];
-  Kokkos::parallel_for(
-      "extension_sweep", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        const int p = cell(q);
+  for_listed("extension_sweep", cell, n, KOKKOS_LAMBDA(int, int p) {
         const double pc = ps(p);
         double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, wsum = 0;
         if (pc <= below) {

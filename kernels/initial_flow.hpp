@@ -35,10 +35,10 @@ inline void fillInitialFlow(const Grid& g, const InitialFlow& f, const VecField&
         if (mode == 1) {
           v[0] = U0; v[1] = U1; v[2] = U2;
         } else if (mode == 2) {
-          v[0] = A * std::sin(kx * (x - lo0)) * std::cos(ky * (y - lo1));
-          v[1] = -A * (kx / ky) * std::cos(kx * (x - lo0)) * std::sin(ky * (y - lo1));
+          v[0] = A * km::sin(kx * (x - lo0)) * km::cos(ky * (y - lo1));
+          v[1] = -A * (kx / ky) * km::cos(kx * (x - lo0)) * km::sin(ky * (y - lo1));
           pc += 0.25 * rho * A * A *
-                (std::cos(2 * kx * (xc - lo0)) + (kx * kx) / (ky * ky) * std::cos(2 * ky * (yc - lo1)));
+                (km::cos(2 * kx * (xc - lo0)) + (kx * kx) / (ky * ky) * km::cos(2 * ky * (yc - lo1)));
         } else if (mode == 3) {
           v[0] = wLo + (wHi - wLo) * (y - lo1) / Ly;
         } else if (mode == 4) {

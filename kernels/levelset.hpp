@@ -89,7 +89,7 @@ inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double 
           const double gx = (psi(i + 1, j, k) - psi(i - 1, j, k)) * i0;
           const double gy = (psi(i, j + 1, k) - psi(i, j - 1, k)) * i1;
           const double gz = (psi(i, j, k + 1) - psi(i, j, k - 1)) * i2;
-          a += d * std::sqrt(gx * gx + gy * gy + gz * gz) * dv;
+          a += d * km::sqrt(gx * gx + gy * gy + gz * gz) * dv;
         }
       },
       vol, sharp, area);

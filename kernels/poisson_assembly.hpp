@@ -7,7 +7,7 @@
 // in `pattern`, sets changed() = 1 when it differs from the last call, and marks rows with
 // no entries as identity rows (p fixed to 0). Returns max_r sum_c |A_rc| on this rank.
 #include "kernels/projection_ops.hpp"
-#include "solvers/null_space.hpp"
+#include "kernels/poisson_rows.hpp"
 
 namespace voigt {
 
@@ -16,7 +16,7 @@ constexpr int kCentre = 13;
 using SlotView = Kokkos::View<int**, Kokkos::LayoutRight, MemSpace>;
 
 template <class Values, class RowMap>
-double assemblePoisson(const Values& vals, const RowMap& rowPtr, const SlotView& slot, const RowFlags& ident,
+inline double assemblePoisson(const Values& vals, const RowMap& rowPtr, const SlotView& slot, const RowFlags& ident,
                        const RowFlags& pattern, const GridGeom& G, const CellRows& rw, bool exact,
                        const VecField& coef, int nrows, const Kokkos::View<int, MemSpace>& changed) {
   double amax = 0;

@@ -24,10 +24,10 @@ KOKKOS_INLINE_FUNCTION void flowAt(const FlowParams& p, const double x[3], doubl
     out[2] = p.w[0] * r[1] - p.w[1] * r[0];
   } else if (p.type == 1) {
     const double xs = (x[0] - p.lo[0]) / p.len[0], ys = (x[1] - p.lo[1]) / p.len[1];
-    const double f = std::cos(M_PI * t / p.period);
-    const double sx = std::sin(M_PI * xs), sy = std::sin(M_PI * ys);
-    out[0] = -2 * sx * sx * sy * std::cos(M_PI * ys) * f * p.len[0];
-    out[1] = 2 * sy * sy * sx * std::cos(M_PI * xs) * f * p.len[1];
+    const double f = km::cos(M_PI * t / p.period);
+    const double sx = km::sin(M_PI * xs), sy = km::sin(M_PI * ys);
+    out[0] = -2 * sx * sx * sy * km::cos(M_PI * ys) * f * p.len[0];
+    out[1] = 2 * sy * sy * sx * km::cos(M_PI * xs) * f * p.len[1];
     out[2] = 0;
   } else {
     out[0] = p.v[0];
@@ -60,7 +60,7 @@ inline double prescribedFlowRate(const Grid& g, const FlowParams& p) {
         const double x[3] = {lo0 + (i - ng + c0) * h0, lo1 + (j - ng + c1) * h1, lo2 + (k - ng + c2) * h2};
         double v[3];
         flowAt(p, x, 0.0, v);
-        const double s = std::fabs(v[0]) / h0 + std::fabs(v[1]) / h1 + std::fabs(v[2]) / h2;
+        const double s = km::fabs(v[0]) / h0 + km::fabs(v[1]) / h1 + km::fabs(v[2]) / h2;
         if (s > m) m = s;
       },
       Kokkos::Max<double>(inv));

@@ -190,7 +190,7 @@ inline long long firstNonFinite(const Grid& g, const Field& f, Range3 r) {
 
 // The advective rate sum_d |u_d| / h_d at a node.
 KOKKOS_INLINE_FUNCTION double nodeRate(const VecField& u, double ih0, double ih1, double ih2, int i, int j, int k) {
-  return std::fabs(u.c[0](i, j, k)) * ih0 + std::fabs(u.c[1](i, j, k)) * ih1 + std::fabs(u.c[2](i, j, k)) * ih2;
+  return km::fabs(u.c[0](i, j, k)) * ih0 + km::fabs(u.c[1](i, j, k)) * ih1 + km::fabs(u.c[2](i, j, k)) * ih2;
 }
 
 // Local max of nodeRate over r (the fastest node, for a dt-collapse message).

@@ -74,7 +74,8 @@ struct BandViews {
 using voigt::Unpack; // core/index_space.hpp
 
 KOKKOS_INLINE_FUNCTION double minmod(double a, double b) { // branch-free: this is the hot loop
-  return (std::copysign(0.5, a) + std::copysign(0.5, b)) * std::fmin(std::fabs(a), std::fabs(b));
+  // std::copysign: Kokkos 3.4 has none (nvcc maps std::copysign to the device builtin).
+  return (std::copysign(0.5, a) + std::copysign(0.5, b)) * km::fmin(km::fabs(a), km::fabs(b));
 }
 
 // Second-order ENO one-sided differences at p0 along one axis.
@@ -91,8 +92,8 @@ KOKKOS_INLINE_FUNCTION void eno2(double pm2, double pm1, double p0, double pp1, 
 // s > 0 takes max(D-, 0)^2 and min(D+, 0)^2, s < 0 the mirror image.
 KOKKOS_INLINE_FUNCTION double godunov2(double s, double dm, double dp) {
   const double sg = s > 0 ? 1.0 : -1.0;
-  const double a = std::fmax(sg * dm, 0.0), b = std::fmax(-sg * dp, 0.0);
-  return std::fmax(a * a, b * b);
+  const double a = km::fmax(sg * dm, 0.0), b = km::fmax(-sg * dp, 0.0);
+  return km::fmax(a * a, b * b);
 }
 
 // Compact list of owned cells with |psi0| < band (parallel_scan); returns the count.
@@ -104,7 +105,7 @@ inline int buildBandList(const Grid& g, const Field& psi0, double band, const In
       "reinit_band_list", Kokkos::RangePolicy<ExecSpace>(0, total),
       KOKKOS_LAMBDA(int q, int& upd, bool final) {
         const int i = ng + q % l0, j = ng + (q / l0) % l1, k = ng + q / (l0 * l1);
-        if (std::fabs(psi0(i, j, k)) < band) {
+        if (km::fabs(psi0(i, j, k)) < band) {
           if (final) cell(upd) = i + e0 * (j + e1 * k);
           ++upd;
         }
@@ -129,7 +130,7 @@ inline void gradMagField(const Grid& g, const Field& psi0, const Field& dH, cons
     const double gx = (psi0(i + 1, j, k) - psi0(i - 1, j, k)) / (2 * h0);
     const double gy = (psi0(i, j + 1, k) - psi0(i, j - 1, k)) / (2 * h1);
     const double gz = (psi0(i, j, k + 1) - psi0(i, j, k - 1)) / (2 * h2);
-    gm(i, j, k) = dH(i, j, k) > 0 ? std::sqrt(gx * gx + gy * gy + gz * gz) : 0.0;
+    gm(i, j, k) = dH(i, j, k) > 0 ? km::sqrt(gx * gx + gy * gy + gz * gz) : 0.0;
   });
 }
 
@@ -142,11 +143,9 @@ inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& p
   const double hs = std::min({h0, h1, h2});
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
   const FlatField ps = flat(psi0), fd = flat(dH), fg = flat(gm);
-  Kokkos::parallel_for(
-      "reinit_prepare", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        const int p = b.cell(q);
+  for_listed("reinit_prepare", b.cell, n, KOKKOS_LAMBDA(int q, int p) {
         const double p0 = ps(p);
-        b.sgn(q) = p0 / std::sqrt(p0 * p0 + hs * hs);
+        b.sgn(q) = p0 / km::sqrt(p0 * p0 + hs * hs);
         const double nb[3][2] = {{ps(p - 1), ps(p + 1)}, {ps(p - sj), ps(p + sj)}, {ps(p - sk), ps(p + sk)}};
         const double far[3][2] = {
             {ps(p - 2), ps(p + 2)}, {ps(p - 2 * sj), ps(p + 2 * sj)}, {ps(p - 2 * sk), ps(p + 2 * sk)}};
@@ -158,17 +157,17 @@ inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& p
         for (int d = 0; d < 3; ++d) {
           const double m = nb[d][0], p = nb[d][1];
           iface = iface || p0 * m <= 0 || p0 * p <= 0;
-          const bool in1 = std::fabs(m) < band && std::fabs(p) < band;
+          const bool in1 = km::fabs(m) < band && km::fabs(p) < band;
           inside = inside && in1;
-          if (in1 && std::fabs(far[d][0]) < band && std::fabs(far[d][1]) < band) eno |= kEno << d;
-          double del = std::fabs(p - m) * 0.5;
-          del = std::fmax(del, std::fmax(std::fabs(p - p0), std::fabs(p0 - m)));
+          if (in1 && km::fabs(far[d][0]) < band && km::fabs(far[d][1]) < band) eno |= kEno << d;
+          double del = km::fabs(p - m) * 0.5;
+          del = km::fmax(del, km::fmax(km::fabs(p - p0), km::fabs(p0 - m)));
           g2 += (del / hd[d]) * (del / hd[d]);
         }
         b.flags(q) = (iface ? kInterface : 0) | (!iface && inside ? kInterior : 0) | eno;
         // Used only next to the interface, where it is ~ psi0; clamped for safety.
-        const double D = g2 > 0 ? p0 / std::sqrt(g2) : p0;
-        b.dist(q) = std::fmax(-band, std::fmin(band, D));
+        const double D = g2 > 0 ? p0 / km::sqrt(g2) : p0;
+        b.dist(q) = km::fmax(-band, km::fmin(band, D));
         double coef = 0;
         if (constraint && fd(p) > 0) {
           const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
@@ -197,9 +196,7 @@ inline void eikonalStage(const Grid& g, const BandViews& b, int n, const Field& 
   const double hmin = std::min({h0, h1, h2});
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
   const FlatField fi = flat(in), fb = flat(base), fo = flat(out);
-  Kokkos::parallel_for(
-      "reinit_stage", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        const int p = b.cell(q);
+  for_listed("reinit_stage", b.cell, n, KOKKOS_LAMBDA(int q, int p) {
         const double p0 = fi(p), s = b.sgn(q);
         double rate;
         if (subcell && (b.flags(q) & kInterface)) {
@@ -213,7 +210,7 @@ inline void eikonalStage(const Grid& g, const BandViews& b, int n, const Field& 
           g2 += godunov2(s, dm, dp);
           eno2(fi(p - 2 * sk), fi(p - sk), p0, fi(p + sk), fi(p + 2 * sk), h2, fl & (kEno << 2), dm, dp);
           g2 += godunov2(s, dm, dp);
-          rate = s * (1 - std::sqrt(g2));
+          rate = s * (1 - km::sqrt(g2));
         }
         fo(p) = alpha * fb(p) + (1 - alpha) * (p0 + dtau * rate);
       });
@@ -225,9 +222,7 @@ inline void applyConstraint(const Grid& g, const BandViews& b, int n, const Fiel
                             const Field& dH, const Field& out) {
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
   const FlatField ft = flat(psiT), fm = flat(psiM), fd = flat(dH), fo = flat(out);
-  Kokkos::parallel_for(
-      "reinit_constraint", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        const int p = b.cell(q);
+  for_listed("reinit_constraint", b.cell, n, KOKKOS_LAMBDA(int q, int p) {
         const double coef = b.coef(q);
         double num = 0;
         if (coef != 0) {
@@ -249,9 +244,7 @@ inline void applyConstraint(const Grid& g, const BandViews& b, int n, const Fiel
 
 inline void copyBand(const Grid& g, const BandViews& b, int n, const Field& src, const Field& dst) {
   const FlatField fs = flat(src), fd = flat(dst);
-  Kokkos::parallel_for(
-      "reinit_copy", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) {
-        const int p = b.cell(q);
+  for_listed("reinit_copy", b.cell, n, KOKKOS_LAMBDA(int, int p) {
         fd(p) = fs(p);
       });
 }
@@ -272,11 +265,11 @@ inline double maxGradError(const Grid& g, const BandViews& b, int n, const Field
         if (!(b.flags(q) & kInterior)) return;
         int i, j, k;
         up(b.cell(q), i, j, k);
-        if (std::fabs(psi(i, j, k)) > lim) return;
+        if (km::fabs(psi(i, j, k)) > lim) return;
         const double gx = (psi(i + 1, j, k) - psi(i - 1, j, k)) * i0;
         const double gy = (psi(i, j + 1, k) - psi(i, j - 1, k)) * i1;
         const double gz = (psi(i, j, k + 1) - psi(i, j, k - 1)) * i2;
-        const double e = std::fabs(std::sqrt(gx * gx + gy * gy + gz * gz) - 1);
+        const double e = km::fabs(km::sqrt(gx * gx + gy * gy + gz * gz) - 1);
         if (e > acc || e != e) acc = e;
       },
       Kokkos::Max<double>(m));

@@ -62,22 +62,22 @@ struct SolidTargets {
 // Signed distance from x to the target's surface, > 0 in the fluid.
 KOKKOS_INLINE_FUNCTION double targetDistance(const SolidTarget& t, const double x[3]) {
   if (t.kind == 0)
-    return std::sqrt((x[0] - t.c[0]) * (x[0] - t.c[0]) + (x[1] - t.c[1]) * (x[1] - t.c[1]) +
+    return km::sqrt((x[0] - t.c[0]) * (x[0] - t.c[0]) + (x[1] - t.c[1]) * (x[1] - t.c[1]) +
                      (x[2] - t.c[2]) * (x[2] - t.c[2])) - t.r;
   if (t.kind == 1) {
     double r2 = 0;
     for (int d = 0; d < 3; ++d)
       if (d != t.axis) r2 += (x[d] - t.c[d]) * (x[d] - t.c[d]);
-    return std::sqrt(r2) - t.r;
+    return km::sqrt(r2) - t.r;
   }
   if (t.kind == 2) { // exact signed distance to a box
     double out = 0, in = -1e300;
     for (int d = 0; d < 3; ++d) {
-      const double q = std::fabs(x[d] - 0.5 * (t.lo[d] + t.hi[d])) - 0.5 * (t.hi[d] - t.lo[d]);
+      const double q = km::fabs(x[d] - 0.5 * (t.lo[d] + t.hi[d])) - 0.5 * (t.hi[d] - t.lo[d]);
       if (q > 0) out += q * q;
       in = q > in ? q : in;
     }
-    return std::sqrt(out) + (in < 0 ? in : 0);
+    return km::sqrt(out) + (in < 0 ? in : 0);
   }
   return t.kind == 3 ? x[t.axis] - t.c[t.axis] : t.c[t.axis] - x[t.axis];
 }
@@ -147,7 +147,7 @@ inline double solidBending(const Grid& g, const Field& psi, double kappa, double
         // Bilinear (cloud-in-cell) share to the 4 nearest column centres: a cell
         // on a column boundary splits evenly, so no rounding tie moves it.
         const double fa = a / hm, fb = b / hm;
-        const int ia = int(std::floor(fa)), ib = int(std::floor(fb));
+        const int ia = int(km::floor(fa)), ib = int(km::floor(fb));
         for (int n = 0; n < 4; ++n) {
           const int qa = ia + (n & 1) + R, qb = ib + (n >> 1) + R;
           if (qa < 0 || qa >= nb || qb < 0 || qb >= nb) continue;
@@ -179,7 +179,7 @@ inline double solidBending(const Grid& g, const Field& psi, double kappa, double
   if (fit.s[0] < 3) return 0;
   const double A[3][3] = {{fit.s[0], fit.s[1], fit.s[2]}, {fit.s[1], fit.s[3], fit.s[4]}, {fit.s[2], fit.s[4], fit.s[5]}};
   const double rhs[3] = {fit.s[6], fit.s[7], fit.s[8]}, D = det3(A);
-  if (!(std::fabs(D) > 0)) return 0;
+  if (!(km::fabs(D) > 0)) return 0;
   double p[3]; // Cramer's rule
   for (int col = 0; col < 3; ++col) {
     double M[3][3];
@@ -194,7 +194,7 @@ inline double solidBending(const Grid& g, const Field& psi, double kappa, double
       KOKKOS_LAMBDA(int q, double& m) {
         const double W = bins(q, 3);
         if (W < 1) return;
-        const double d = std::fabs(bins(q, 2) / W - p0 - p1 * bins(q, 0) / W - p2 * bins(q, 1) / W);
+        const double d = km::fabs(bins(q, 2) / W - p0 - p1 * bins(q, 0) / W - p2 * bins(q, 1) / W);
         if (d > m) m = d;
       },
       Kokkos::Max<double>(dev));

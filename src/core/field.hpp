@@ -10,6 +10,13 @@
 namespace voigt {
 
 using ExecSpace = Kokkos::DefaultExecutionSpace;
+// Math that device code may call (sqrt, fabs, pow, ...): Kokkos 3's Experimental
+// namespace, Kokkos 4's own. On the host these are std::'s (same results).
+#if KOKKOS_VERSION >= 40000
+namespace km = Kokkos;
+#else
+namespace km = Kokkos::Experimental;
+#endif
 using MemSpace = ExecSpace::memory_space;
 using Field = Kokkos::View<double***, Kokkos::LayoutLeft, MemSpace>;
 using IntField = Kokkos::View<int***, Kokkos::LayoutLeft, MemSpace>;

@@ -56,6 +56,14 @@ inline void for_each3(const char* name, const Range3& r, const F& f) {
       });
 }
 
+// for_listed(name, list, n, f): f(q, p) for q < n, p = list(q), over a packed cell list
+// (IntList below), whose entries are memory offsets (flat()). Same contract as for_each3.
+template <class L, class F>
+inline void for_listed(const char* name, const L& list, int n, const F& f) {
+  Kokkos::parallel_for(
+      name, Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q) VOIGT_FLATTEN { f(q, list(q)); });
+}
+
 // r grown by n layers on every side.
 inline Range3 grown(Range3 r, int n) {
   for (int d = 0; d < 3; ++d) {

@@ -22,24 +22,14 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "kernels/shapes.hpp"
 #include "scene/reader.hpp"
 
 namespace voigt {
 
-enum class ShapeKind : int { Plane, Wave, Sphere, Box, Cylinder, Superquadric, Packing, Union, Intersection, Complement };
-
-struct ShapeOp {
-  ShapeKind kind = ShapeKind::Sphere;
-  double a[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}; // parameters, per kind (shapes.cpp)
-  int n = 0;                                     // union/intersection: operands; packing: first sphere
-  int m = 0;                                     // packing: sphere count; cylinder: axis
-};
-
-constexpr int kShapeStack = 32;
-
 struct ShapeProgram {
-  Kokkos::View<ShapeOp*, MemSpace> ops;
-  Kokkos::View<double* [4], MemSpace> spheres; // packing centres and radii
+  ShapeOps ops;
+  ShapeSpheres spheres; // packing centres and radii
   std::string text;                             // one-line description for `voigt check`
   long long sphereCount = 0;
   // A single sphere, box, plane or cylinder (or its complement) is already an

@@ -14,70 +14,6 @@ namespace {
 constexpr double kNullTol = 1e-10; // ||A v|| <= kNullTol ||v|| ||A||: v is null
 constexpr double kRankTol = 1e-9;  // Gram eigenvalues below kRankTol * max are dependencies
 
-// Basis memberships of one row: the constant and one plane mode per axis.
-struct Basis {
-  GridGeom G;
-  CellRows rw;
-  int off0, off1, off2;
-  KOKKOS_INLINE_FUNCTION void at(int r, int idx[4], double sg[4]) const {
-    int l[3];
-    rw.cell(r, l[0], l[1], l[2]);
-    const int g0 = G.glob(0, l[0]), g1 = G.glob(1, l[1]), g2 = G.glob(2, l[2]);
-    idx[0] = 0;
-    idx[1] = off0 + g0;
-    idx[2] = off1 + g1;
-    idx[3] = off2 + g2;
-    sg[0] = 1;
-    sg[1] = ((g1 + g2) & 1) ? -1.0 : 1.0;
-    sg[2] = ((g2 + g0) & 1) ? -1.0 : 1.0;
-    sg[3] = ((g0 + g1) & 1) ? -1.0 : 1.0;
-  }
-};
-
-// Kokkos array-sum reduction: value_type, init and join shared by the functors.
-struct ArraySum {
-  using value_type = double[];
-  using size_type = int;
-  unsigned value_count;
-  KOKKOS_INLINE_FUNCTION void init(value_type s) const {
-    for (unsigned m = 0; m < value_count; ++m) s[m] = 0;
-  }
-  KOKKOS_INLINE_FUNCTION void join(value_type d, const value_type s) const {
-    for (unsigned m = 0; m < value_count; ++m) d[m] += s[m];
-  }
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type d, const volatile value_type s) const {
-    for (unsigned m = 0; m < value_count; ++m) d[m] += s[m];
-  }
-};
-
-// Array reduction s = M^T v over the local rows.
-struct AnalyzeFunctor : ArraySum {
-  Basis B;
-  RowVector v;
-  RowFlags ident;
-  KOKKOS_INLINE_FUNCTION void operator()(int r, value_type s) const {
-    if (ident(r)) return;
-    int idx[4];
-    double sg[4];
-    B.at(r, idx, sg);
-    const double x = v(r);
-    for (int m = 0; m < 4; ++m) s[idx[m]] += sg[m] * x;
-  }
-};
-
-// Array reduction ps[q] = sum over plane q along `axis` of y^2.
-struct PlaneNormFunctor : ArraySum {
-  GridGeom G;
-  CellRows rw;
-  int axis;
-  RowVector y;
-  KOKKOS_INLINE_FUNCTION void operator()(int r, value_type s) const {
-    int l[3];
-    rw.cell(r, l[0], l[1], l[2]);
-    s[G.glob(axis, l[axis])] += y(r) * y(r);
-  }
-};
-
 // Colour of plane q along an axis with n planes: planes of one colour are >= 3
 // apart (cyclically on a periodic axis), so their A-images do not overlap.
 int colourOf(int q, int n, bool per) {
@@ -107,18 +43,13 @@ NullSpace::NullSpace(const GridGeom& G, const CellRows& rows, int nrows, MPI_Com
 
 void NullSpace::analyze(const RowVector& v, double* s) const {
   if (constantOnly_) { // the 7-point operator's case: one plain sum, same order as below
-    auto ident = ident_;
-    double sum = 0;
-    Kokkos::parallel_reduce(
-        "nullspace_sum", Kokkos::RangePolicy<ExecSpace>(0, nrows_),
-        KOKKOS_LAMBDA(int r, double& acc) { acc += ident(r) ? 0.0 : v(r); }, sum);
+    double sum = rowSum(v, ident_, nrows_);
     MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm_);
     std::fill(s, s + nb_, 0.0);
     s[0] = sum;
     return;
   }
-  AnalyzeFunctor f{{(unsigned)nb_}, Basis{G_, rows_, off_[0], off_[1], off_[2]}, v, ident_};
-  Kokkos::parallel_reduce("nullspace_analyze", Kokkos::RangePolicy<ExecSpace>(0, nrows_), f, s);
+  nullAnalyze(NullBasis{G_, rows_, off_[0], off_[1], off_[2]}, nb_, v, ident_, nrows_, s);
   MPI_Allreduce(MPI_IN_PLACE, s, nb_, MPI_DOUBLE, MPI_SUM, comm_);
 }
 
@@ -126,41 +57,17 @@ void NullSpace::synthesize(const double* a, const RowVector& v, bool subtract) c
   auto ha = Kokkos::create_mirror_view(coef_);
   for (int m = 0; m < nb_; ++m) ha(m) = a[m];
   Kokkos::deep_copy(coef_, ha);
-  auto ident = ident_;
-  if (constantOnly_) { // the other coefficients are zero (remove())
-    const double c0 = a[0];
-    Kokkos::parallel_for(
-        "nullspace_synthesize_constant", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
-          const double w = ident(r) ? 0.0 : c0;
-          v(r) = subtract ? v(r) - w : w;
-        });
-    Kokkos::fence();
-    return;
-  }
-  const Basis B{G_, rows_, off_[0], off_[1], off_[2]};
-  auto c = coef_;
-  Kokkos::parallel_for(
-      "nullspace_synthesize", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
-        int idx[4];
-        double sg[4];
-        B.at(r, idx, sg);
-        const double w = ident(r) ? 0.0 : c(0) + sg[1] * c(idx[1]) + sg[2] * c(idx[2]) + sg[3] * c(idx[3]);
-        v(r) = subtract ? v(r) - w : w;
-      });
-  Kokkos::fence();
+  if (constantOnly_) nullSynthesizeConstant(a[0], v, ident_, nrows_, subtract); // the others are zero (remove())
+  else nullSynthesize(NullBasis{G_, rows_, off_[0], off_[1], off_[2]}, coef_, v, ident_, nrows_, subtract);
 }
 
 void NullSpace::planeNorms(const RowVector& y, int axis, double* ps) const {
-  PlaneNormFunctor f{{(unsigned)G_.n[axis]}, G_, rows_, axis, y};
-  Kokkos::parallel_reduce("nullspace_plane_norms", Kokkos::RangePolicy<ExecSpace>(0, nrows_), f, ps);
+  planeSquares(G_, rows_, axis, y, nrows_, ps);
   MPI_Allreduce(MPI_IN_PLACE, ps, G_.n[axis], MPI_DOUBLE, MPI_SUM, comm_);
 }
 
 double NullSpace::norm2(const RowVector& v) const {
-  double s = 0;
-  Kokkos::parallel_reduce(
-      "nullspace_norm", Kokkos::RangePolicy<ExecSpace>(0, nrows_),
-      KOKKOS_LAMBDA(int r, double& acc) { acc += v(r) * v(r); }, s);
+  double s = rowSquares(v, nrows_);
   MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPI_DOUBLE, MPI_SUM, comm_);
   return std::sqrt(s);
 }
@@ -173,7 +80,7 @@ void NullSpace::rebuild(const RowFlags& ident, const Apply& apply, double scale)
   std::vector<double> Gm((size_t)nb * nb, 0.0);
   {
     auto hid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ident);
-    const Basis B{G_, rows_, off_[0], off_[1], off_[2]};
+    const NullBasis B{G_, rows_, off_[0], off_[1], off_[2]};
     for (int r = 0; r < nrows_; ++r) {
       if (hid(r)) continue;
       int idx[4];

@@ -38,25 +38,10 @@
 #include <vector>
 
 #include "core/field.hpp"
+#include "kernels/poisson_rows.hpp"
 #include "kernels/projection_ops.hpp"
 
 namespace voigt {
-
-// Owned cell (local i,j,k) <-> row r; rows in local lexicographic order, i fastest.
-struct CellRows {
-  int ng, n0, n1;
-  KOKKOS_INLINE_FUNCTION int row(int i, int j, int k) const {
-    return (i - ng) + n0 * ((j - ng) + n1 * (k - ng));
-  }
-  KOKKOS_INLINE_FUNCTION void cell(int r, int& i, int& j, int& k) const {
-    i = ng + r % n0;
-    j = ng + (r / n0) % n1;
-    k = ng + r / (n0 * n1);
-  }
-};
-
-using RowVector = Kokkos::View<double*, Kokkos::LayoutLeft, MemSpace>;
-using RowFlags = Kokkos::View<int*, MemSpace>;
 
 class NullSpace {
  public:

@@ -15,10 +15,11 @@
 #include <vector>
 
 #include "core/index_space.hpp"
+#include "kernels/poisson_assembly.hpp"
+#include "kernels/poisson_rows.hpp"
 #include "kernels/projection_ops.hpp"
 #include "solvers/null_space.hpp"
 #include "solvers/operators.hpp"
-#include "solvers/poisson_assembly.hpp"
 #include "solvers/poisson.hpp"
 #include "solvers/trilinos_types.hpp"
 
@@ -34,21 +35,9 @@ RowVector devView(Vector& v) {
 
 // Field owned cells -> vector; identity rows zeroed when `ident` is non-empty.
 void fieldToVec(const Field& f, Vector& v, CellRows rw, Range3 cells, RowFlags ident) {
-  auto vv = devView(v);
-  const bool zero = ident.extent(0) > 0;
-  for_each3("poisson_field_to_vec", cells, KOKKOS_LAMBDA(int i, int j, int k) {
-        const int r = rw.row(i, j, k);
-        vv(r) = (zero && ident(r)) ? 0.0 : f(i, j, k);
-      });
-  Kokkos::fence();
+  fieldToRows(f, devView(v), rw, cells, ident);
 }
-
-void vecToField(Vector& v, const Field& f, CellRows rw, Range3 cells) {
-  auto vv = devView(v);
-  for_each3("poisson_vec_to_field", cells,
-      KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = vv(rw.row(i, j, k)); });
-  Kokkos::fence();
-}
+void vecToField(Vector& v, const Field& f, CellRows rw, Range3 cells) { rowsToField(devView(v), f, rw, cells); }
 
 class TpetraPoisson final : public PoissonSolver {
  public:
@@ -295,15 +284,7 @@ class TpetraPoisson final : public PoissonSolver {
     }
   }
 
-  void zeroIdentityRows(Vector& v) const {
-    auto vv = devView(v);
-    auto ident = ident_;
-    Kokkos::parallel_for(
-        "poisson_zero_identity", Kokkos::RangePolicy<ExecSpace>(0, nrows_), KOKKOS_LAMBDA(int r) {
-          if (ident(r)) vv(r) = 0;
-        });
-    Kokkos::fence();
-  }
+  void zeroIdentityRows(Vector& v) const { voigt::zeroIdentityRows(devView(v), ident_, nrows_); }
 
   double residual() { // ||b - A x||, t = b - A x
     A_->apply(*x_, *t_);

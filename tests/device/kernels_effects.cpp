@@ -3,14 +3,18 @@
 // initial and prescribed flows). Every call's result becomes a checksum (check.hpp).
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "kernels/elastic.hpp"
 #include "kernels/initial_flow.hpp"
 #include "kernels/momentum.hpp"
+#include "kernels/poisson_assembly.hpp"
+#include "kernels/poisson_rows.hpp"
 #include "kernels/prescribed_flow.hpp"
 #include "kernels/probes.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
+#include "kernels/shapes.hpp"
 #include "kernels/solid_body.hpp"
 #include "check.hpp"
 
@@ -141,11 +145,98 @@ void diagnostics(const Grid& g, Fields& f) {
   put("sampleProbes", std::fabs(h(0, 0)) + std::fabs(h(1, 0)) + std::fabs(h(0, 1)) + std::fabs(h(1, 1)));
 }
 
+// The pressure solver's row kernels (kernels/poisson_rows.hpp, poisson_assembly.hpp) on
+// plain views in the place of Tpetra's, and the implicit shapes (kernels/shapes.hpp).
+void solverRowsAndShapes(const Grid& g, Fields& f) {
+  const Range3 cells = cellRange(g);
+  const GridGeom G(g);
+  const CellRows rw{g.ng, g.ln[0], g.ln[1]};
+  const int nr = int(g.cellsOwned()), nb = 1 + g.n[0] + g.n[1] + g.n[2];
+  const RowVector v("v", nr);
+  const RowFlags ident("ident", nr), none;
+  Kokkos::parallel_for(
+      "check_ident", Kokkos::RangePolicy<ExecSpace>(0, nr), KOKKOS_LAMBDA(int r) { ident(r) = r % 5 == 0; });
+  fieldToRows(f.p, v, rw, cells, none);
+  put("fieldToRows", rowSquares(v, nr)); // rowSquares: sum of v^2
+  put("rowSum", rowSum(v, ident, nr));
+  const NullBasis B{G, rw, 1, 1 + g.n[0], 1 + g.n[0] + g.n[1]};
+  std::vector<double> sv(nb), ps(g.n[1]);
+  nullAnalyze(B, nb, v, ident, nr, sv.data());
+  double s = 0;
+  for (int m = 0; m < nb; ++m) s += std::fabs(sv[m]) * (1 + 0.01 * m);
+  put("nullAnalyze", s);
+  Kokkos::View<double*, MemSpace> c("c", nb);
+  Kokkos::parallel_for(
+      "check_coef", Kokkos::RangePolicy<ExecSpace>(0, nb), KOKKOS_LAMBDA(int m) { c(m) = 0.1 + 0.01 * m; });
+  nullSynthesize(B, c, v, ident, nr, true);
+  put("nullSynthesize", rowSquares(v, nr));
+  nullSynthesizeConstant(0.5, v, ident, nr, true);
+  planeSquares(G, rw, 1, v, nr, ps.data());
+  s = 0;
+  for (size_t q = 0; q < ps.size(); ++q) s += ps[q] * (1 + 0.1 * q);
+  put("nullSynthesizeConstant+planeSquares", s);
+  zeroIdentityRows(v, ident, nr);
+  rowsToField(v, f.psi1, rw, cells);
+  put("zeroIdentityRows+rowsToField", sumAbs(f.psi1, cells));
+  // The matrix on 27 slots a row (row r's offset o at 27 r + o), both operators.
+  const SlotView slot("slot", nr, kStencil);
+  const Kokkos::View<size_t*, MemSpace> rowPtr("rowPtr", nr + 1);
+  const Kokkos::View<double*, MemSpace> vals("vals", size_t(nr) * kStencil);
+  Kokkos::parallel_for(
+      "check_slots", Kokkos::RangePolicy<ExecSpace>(0, nr + 1), KOKKOS_LAMBDA(int r) {
+        rowPtr(r) = size_t(r) * kStencil;
+        for (int o = 0; o < kStencil && r < nr; ++o) slot(r, o) = r * kStencil + o;
+      });
+  const RowFlags pattern("pattern", nr);
+  const Kokkos::View<int, MemSpace> changed("changed");
+  for (int exact = 0; exact <= 1; ++exact) {
+    const double amax = assemblePoisson(vals, rowPtr, slot, ident, pattern, G, rw, exact, f.coef, nr, changed);
+    double sv2 = 0;
+    Kokkos::parallel_reduce(
+        "check_vals", Kokkos::RangePolicy<ExecSpace>(0, nr * kStencil),
+        KOKKOS_LAMBDA(int q, double& acc) { acc += Kokkos::Experimental::fabs(vals(q)) * (1 + q % 27); }, sv2);
+    put(std::string("assemblePoisson.") + (exact ? "exact" : "approximate"), amax + sv2 + rowSum(v, ident, nr));
+  }
+  // Every primitive: (plane ^ wave) u sphere u box u cylinder u superquadric u packing, negated.
+  std::vector<ShapeOp> ops(10);
+  const double P[10][11] = {{0.5, 0.4, 0.3, 0, 1, 0},
+                            {0.5, 0.5, 0.3, 0, -1, 0, 0.05, 1, 0, 0, 12.0},
+                            {},
+                            {0.5, 0.4, 0.3, 0.2},
+                            {0.3, 0.3, 0.3, 0.1, 0.2, 0.1},
+                            {0.6, 0.3, 0.3, 0.08, 0.15},
+                            {0.5, 0.5, 0.4, 0.2, 0.1, 0.15, 4},
+                            {},
+                            {},
+                            {}};
+  const ShapeKind K[10] = {ShapeKind::Plane,    ShapeKind::Wave,         ShapeKind::Intersection, ShapeKind::Sphere,
+                           ShapeKind::Box,      ShapeKind::Cylinder,     ShapeKind::Superquadric, ShapeKind::Packing,
+                           ShapeKind::Union,    ShapeKind::Complement};
+  for (int q = 0; q < 10; ++q) {
+    ops[q].kind = K[q];
+    for (int a = 0; a < 11; ++a) ops[q].a[a] = P[q][a];
+  }
+  ops[2].n = 2, ops[5].m = 2, ops[7].n = 0, ops[7].m = 2, ops[8].n = 6;
+  const ShapeOps dops("ops", 10);
+  auto hops = Kokkos::create_mirror_view(dops);
+  for (int q = 0; q < 10; ++q) hops(q) = ops[q];
+  Kokkos::deep_copy(dops, hops);
+  const ShapeSpheres sp("spheres", 2);
+  auto hsp = Kokkos::create_mirror_view(sp);
+  const double S[2][4] = {{0.2, 0.6, 0.2, 0.1}, {0.8, 0.2, 0.4, 0.15}};
+  for (int q = 0; q < 2; ++q)
+    for (int a = 0; a < 4; ++a) hsp(q, a) = S[q][a];
+  Kokkos::deep_copy(sp, hsp);
+  evaluateShapeOps(g, dops, sp, f.psi1);
+  put("evaluateShapeOps", sumAbs(f.psi1, cellRange(g, g.ng)));
+}
+
 void effects(const Grid& g, Fields& f) {
   solidBody(g, f);
   momentum(g, f);
   effectKernels(g, f);
   diagnostics(g, f);
+  solverRowsAndShapes(g, f);
 }
 
 } // namespace check
