@@ -20,6 +20,7 @@ inline double assemblePoisson(const Values& vals, const RowMap& rowPtr, const Sl
                        const RowFlags& pattern, const GridGeom& G, const CellRows& rw, bool exact,
                        const VecField& coef, int nrows, const Kokkos::View<int, MemSpace>& changed) {
   double amax = 0;
+  const int centre = kCentre; // by value: nvcc refuses a namespace constexpr in device code
     Kokkos::parallel_reduce(
         "poisson_fill", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r, double& rowMax) {
           int l[3];
@@ -70,11 +71,11 @@ inline double assemblePoisson(const Values& vals, const RowMap& rowPtr, const Sl
                   if (((cn >> d) & 1) == s) beta += 0.25 * cv[3 * cn + d];
                 const double c = beta / (G.h[d] * G.h[d]);
                 if (G.cellExists(d, l[d] + (s ? 1 : -1))) {
-                  int o = kCentre + (s ? 1 : -1) * (d == 0 ? 1 : d == 1 ? 3 : 9);
+                  int o = centre + (s ? 1 : -1) * (d == 0 ? 1 : d == 1 ? 3 : 9);
                   vals(slot(r, o)) -= c;
-                  vals(slot(r, kCentre)) += c;
+                  vals(slot(r, centre)) += c;
                 } else {
-                  vals(slot(r, kCentre)) += 2 * c; // outflow: dp = 0 on the face; wall: beta = 0
+                  vals(slot(r, centre)) += 2 * c; // outflow: dp = 0 on the face; wall: beta = 0
                 }
               }
           }
@@ -85,7 +86,7 @@ inline double assemblePoisson(const Values& vals, const RowMap& rowPtr, const Sl
             sum += vals(p) < 0 ? -vals(p) : vals(p);
           }
           ident(r) = empty ? 1 : 0;
-          if (empty) vals(slot(r, kCentre)) = sum = 1; // all nodes prescribed: p is free, fix it to 0
+          if (empty) vals(slot(r, centre)) = sum = 1; // all nodes prescribed: p is free, fix it to 0
           rowMax = rowMax > sum ? rowMax : sum;
         },
         Kokkos::Max<double>(amax));

@@ -32,8 +32,13 @@ class Effect {
   virtual ~Effect() = default;
   virtual std::string name() const = 0;
   virtual std::vector<std::string> dependsOn() const { return {}; }
-  // Setup order: lower first (navier_stokes builds the masks obstacles extend).
-  virtual int setupOrder() const { return 10; }
+  // Effects (by name) whose setup, and so whose tasks within a stage, come before this
+  // one's when the scene has them: navier_stokes builds the masks obstacles extend, the
+  // level set exists before the elastic stress. The default: after every effect that
+  // owns fields or masks others read. Ties keep the scene's order (makeEffects).
+  virtual std::vector<std::string> setupAfter() const {
+    return {"navier_stokes", "prescribed_flow", "level_set", "obstacles", "elasticity"};
+  }
   // Validates and resolves what others read (Published); runs for every effect first.
   virtual void publish(const Scene&, Published&) const {}
   // Reads the effect's own section (rejecting unknown keys) and what others published.
@@ -63,7 +68,7 @@ struct EffectInfo {
 const std::vector<EffectInfo>& effectRegistry();
 std::set<std::string> knownEffectNames();
 std::set<std::string> effectSections();
-// Instantiates the scene's effects, checks `requires`, sorts by setupOrder.
+// Instantiates the scene's effects, checks `requires`, orders them by setupAfter().
 std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene);
 
 // Loading a scene as `voigt run` does: every effect's name and section known to the

@@ -12,7 +12,8 @@ class Obstacles : public Effect {
  public:
   std::string name() const override { return "obstacles"; }
   std::vector<std::string> dependsOn() const override { return {"navier_stokes"}; }
-  int setupOrder() const override { return 5; } // after navier_stokes built the face mask
+  // navier_stokes built the face mask this extends.
+  std::vector<std::string> setupAfter() const override { return {"navier_stokes", "prescribed_flow"}; }
   void configure(const Scene& s, const Published&) override { obstacles_ = s.obstacles; }
   void setup(State& st) override {
     IntField mask = st.fields.integer("fix_mask");

@@ -23,7 +23,7 @@ namespace {
 class PrescribedFlow : public Effect {
  public:
   std::string name() const override { return "prescribed_flow"; }
-  int setupOrder() const override { return 0; }
+  std::vector<std::string> setupAfter() const override { return {}; } // first: the velocity others read
   void configure(const Scene& s, const Published&) override {
     const Section sec = topSection(s, "prescribed_flow");
     for (auto& e : s.effects)

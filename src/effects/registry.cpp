@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <stdexcept>
 
 #include "effects/effect.hpp"
 #include "scene/reader.hpp"
@@ -47,6 +48,26 @@ std::set<std::string> effectSections() {
   return s;
 }
 
+// Kahn's order on setupAfter(): the next effect is the first, in the scene's order, whose
+// predecessors present in the scene are all placed.
+static std::vector<std::unique_ptr<Effect>> orderBySetupAfter(std::vector<std::unique_ptr<Effect>> in) {
+  std::vector<std::unique_ptr<Effect>> out;
+  auto placed = [&](const std::string& n) {
+    const bool present = std::any_of(in.begin(), in.end(), [&](auto& e) { return e && e->name() == n; });
+    return !present; // not in the scene, or already moved to out
+  };
+  for (size_t left = in.size(); left > 0; --left) {
+    auto next = std::find_if(in.begin(), in.end(), [&](auto& e) {
+      if (!e) return false;
+      const auto after = e->setupAfter();
+      return std::all_of(after.begin(), after.end(), [&](const std::string& n) { return n == e->name() || placed(n); });
+    });
+    if (next == in.end()) throw std::logic_error("effects: setupAfter() has a cycle");
+    out.push_back(std::move(*next)); // leaves a null behind in `in`
+  }
+  return out;
+}
+
 std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene) {
   std::vector<std::unique_ptr<Effect>> out;
   for (auto& name : scene.effects) {
@@ -63,8 +84,7 @@ std::vector<std::unique_ptr<Effect>> makeEffects(const Scene& scene) {
         const size_t i = std::find(scene.effects.begin(), scene.effects.end(), e->name()) - scene.effects.begin();
         Section(scene.root, "", scene.source).failItem("effects", i, msg); // FILE:LINE:COL of the entry
       }
-  std::stable_sort(out.begin(), out.end(),
-                   [](auto& a, auto& b) { return a->setupOrder() < b->setupOrder(); });
+  out = orderBySetupAfter(std::move(out));
   Published pub;
   for (auto& e : out) e->publish(scene, pub);
   for (auto& e : out) e->configure(scene, pub);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/pipeline.hpp"
+#include "effects/effect.hpp"
 
 using namespace voigt;
 
@@ -52,4 +53,23 @@ TEST(Pipeline, CycleIsAnError) {
   Pipeline p;
   p.add(Stage::Corrections, "a", "t", none, {"b"});
   EXPECT_THROW(p.add(Stage::Corrections, "b", "t", none, {"a"}), std::logic_error);
+}
+
+// Effects set up (and so register their tasks) in the order their setupAfter() declares;
+// effects that declare nothing between them keep the scene's order.
+TEST(EffectOrder, DeclaredSetupAfterThenSceneOrder) {
+  const std::string yaml = R"(domain: {lo: [0, 0, 0], hi: [1, 1, 1], cells: [8, 8, 8]}
+materials:
+  water: {density: 1000, viscosity: 1e-3}
+  gel: {density: 1100, viscosity: 0.1, shear_modulus: 1000}
+fluid: water
+gravity: [0, -9.81, 0]
+effects: [gravity, reinit, elasticity, level_set, navier_stokes]
+level_set:
+  phase: gel
+  shape: {type: sphere, center: [0.5, 0.5, 0.5], radius: 0.2}
+)";
+  std::vector<std::string> names;
+  for (auto& e : makeEffects(loadSceneWithEffectsFromString(yaml, "order.yaml"))) names.push_back(e->name());
+  EXPECT_EQ(names, (std::vector<std::string>{"navier_stokes", "level_set", "elasticity", "gravity", "reinit"}));
 }

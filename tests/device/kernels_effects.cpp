@@ -182,10 +182,11 @@ void solverRowsAndShapes(const Grid& g, Fields& f) {
   const SlotView slot("slot", nr, kStencil);
   const Kokkos::View<size_t*, MemSpace> rowPtr("rowPtr", nr + 1);
   const Kokkos::View<double*, MemSpace> vals("vals", size_t(nr) * kStencil);
+  const int ks = kStencil; // by value: nvcc refuses a namespace constexpr in device code
   Kokkos::parallel_for(
       "check_slots", Kokkos::RangePolicy<ExecSpace>(0, nr + 1), KOKKOS_LAMBDA(int r) {
-        rowPtr(r) = size_t(r) * kStencil;
-        for (int o = 0; o < kStencil && r < nr; ++o) slot(r, o) = r * kStencil + o;
+        rowPtr(r) = size_t(r) * ks;
+        for (int o = 0; o < ks && r < nr; ++o) slot(r, o) = r * ks + o;
       });
   const RowFlags pattern("pattern", nr);
   const Kokkos::View<int, MemSpace> changed("changed");

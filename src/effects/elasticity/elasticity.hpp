@@ -59,7 +59,10 @@ class Elasticity : public Effect {
  public:
   std::string name() const override { return "elasticity"; }
   std::vector<std::string> dependsOn() const override { return {"level_set"}; }
-  int setupOrder() const override { return 6; } // after level_set (psi exists), before reinit
+  // psi and the face masks exist; reinit (a default effect) comes after.
+  std::vector<std::string> setupAfter() const override {
+    return {"navier_stokes", "prescribed_flow", "level_set", "obstacles"};
+  }
   void configure(const Scene& s, const Published& pub) override;
   void declareFields(FieldStore& f) const override;
   void setup(State& st) override;

@@ -17,7 +17,8 @@ namespace voigt {
 class LevelSet : public Effect {
  public:
   std::string name() const override { return "level_set"; }
-  int setupOrder() const override { return 5; } // after navier_stokes (density exists), before reinit
+  // The density exists (navier_stokes) or the flow is given; reinit comes after.
+  std::vector<std::string> setupAfter() const override { return {"navier_stokes", "prescribed_flow"}; }
   void publish(const Scene& s, Published& pub) const override;
   void configure(const Scene& s, const Published& pub) override;
   void declareFields(FieldStore& f) const override;

@@ -15,7 +15,7 @@ namespace voigt {
 class NavierStokes : public Effect {
  public:
   std::string name() const override { return "navier_stokes"; }
-  int setupOrder() const override { return 0; }
+  std::vector<std::string> setupAfter() const override { return {}; } // first: the masks others extend
   void configure(const Scene& s, const Published& pub) override;
   void declareFields(FieldStore& f) const override;
   void setup(State& st) override;
