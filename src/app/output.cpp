@@ -12,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/field_names.hpp"
 #include "core/index_space.hpp"
 #include "io/checkpoint.hpp"
 #include "io/fields_out.hpp"
@@ -24,7 +25,7 @@ namespace voigt {
 namespace fs = std::filesystem;
 
 namespace {
-// Output fields by name; "pressure" is shifted by the outflow reference.
+// Output fields by name; the pressure is shifted by the outflow reference.
 std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& names) {
   std::vector<OutField> out;
   for (auto& n : names) {
@@ -39,7 +40,7 @@ std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& na
       f.comps = {v.c[0], v.c[1], v.c[2]};
     } else {
       Field s = st.fields.scalar(n);
-      if (n == "pressure") {
+      if (n == field::pressure) {
         const double ref = st.diag.count("pressure_reference") ? st.diag.at("pressure_reference") : 0.0;
         Field c("pressure_out", s.extent(0), s.extent(1), s.extent(2));
         shiftedCopy(s, c, ref);

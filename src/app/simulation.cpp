@@ -1,3 +1,4 @@
+#include "core/field_names.hpp"
 #include "app/simulation.hpp"
 
 #include <unistd.h>
@@ -79,8 +80,8 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt)
   for (auto& e : effects_) e->registerTasks(pipeline_);
   for (auto& e : effects_) engine_.addLimit([eff = e.get()](const State& st) { return eff->dtLimit(st); });
   engine_.addAfterStep([](State& st) {
-    if (st.fields.allocated("density")) // kinematic scenes (prescribed_flow) carry no mass
-      st.diag["kinetic_energy"] = kineticEnergy(st.grid, st.fields.vector("velocity"), st.fields.scalar("density"));
+    if (st.fields.allocated(field::density)) // kinematic scenes (prescribed_flow) carry no mass
+      st.diag["kinetic_energy"] = kineticEnergy(st.grid, st.fields.vector(field::velocity), st.fields.scalar(field::density));
   });
   const Section c = topSection(scene_, "checkpoint");
   ck_.interval = c.integer("interval", ck_.interval, 0, 1000000000L);
@@ -156,9 +157,9 @@ long Simulation::advanceTo(double t, const StepEngine::Each& each, long maxSteps
 
 // Where the flow is fastest (the advective limit's cell), for a dt-collapse message.
 std::string Simulation::fastestNode() const {
-  if (!st_.fields.allocated("velocity")) return "";
+  if (!st_.fields.allocated(field::velocity)) return "";
   const Grid& g = st_.grid;
-  const VecField u = st_.fields.vector("velocity");
+  const VecField u = st_.fields.vector(field::velocity);
   const Range3 r = nodeRange(g);
   const double m = maxNodeRate(g, u, r);
   double gm = m;

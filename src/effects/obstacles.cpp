@@ -1,6 +1,7 @@
 // obstacles: rigid bodies as prescribed node velocities (paper: "cells within
 // the cylinder set to zero velocity each step"). Their nodes join the fixed
 // mask, so the projection gives them no correction and no mass leaks through.
+#include "core/field_names.hpp"
 #include "core/boundary.hpp"
 #include "effects/effect.hpp"
 #include "kernels/reductions.hpp"
@@ -16,9 +17,9 @@ class Obstacles : public Effect {
   std::vector<std::string> setupAfter() const override { return {"navier_stokes", "prescribed_flow"}; }
   void configure(const Scene& s, const Published&) override { obstacles_ = s.obstacles; }
   void setup(State& st) override {
-    IntField mask = st.fields.integer("fix_mask");
-    addObstacleMask(st.grid, obstacles_, mask, st.fields.vector("fix_value"));
-    applyFixed(mask, st.fields.vector("fix_value"), st.fields.vector("velocity"),
+    IntField mask = st.fields.integer(field::fixMask);
+    addObstacleMask(st.grid, obstacles_, mask, st.fields.vector(field::fixValue));
+    applyFixed(mask, st.fields.vector(field::fixValue), st.fields.vector(field::velocity),
                Range3{{0, 0, 0}, {st.grid.ext[0], st.grid.ext[1], st.grid.ext[2]}});
     // Count the fully fixed owned nodes for the summary.
     long long n = countFullyFixed(mask, nodeRange(st.grid));

@@ -11,6 +11,7 @@
 // stays second order in time.
 #include <cmath>
 
+#include "core/field_names.hpp"
 #include "core/index_space.hpp"
 #include "effects/effect.hpp"
 #include "kernels/prescribed_flow.hpp"
@@ -49,7 +50,7 @@ class PrescribedFlow : public Effect {
     cfl_ = s.time.cfl;
     sec.finish();
   }
-  void declareFields(FieldStore& f) const override { f.declare("velocity", Centring::Node, 3, name()); }
+  void declareFields(FieldStore& f) const override { f.declare(field::velocity, Centring::Node, 3, name()); }
   void setup(State& st) override { fill(st, st.t); }
   void registerTasks(Pipeline& pl) override {
     pl.add(Stage::Properties, name(), "velocity at t + dt/2 from the closed form",
@@ -66,7 +67,7 @@ class PrescribedFlow : public Effect {
 
  private:
   void fill(State& st, double t) const {
-    fillPrescribedFlow(st.grid, p_, t, st.fields.vector("velocity"));
+    fillPrescribedFlow(st.grid, p_, t, st.fields.vector(field::velocity));
   }
   FlowParams p_;
   double cfl_ = 0.5;

@@ -5,6 +5,7 @@
 // kernels/reinit.hpp). kappa and band come from the `level_set` section.
 #include <memory>
 
+#include "core/field_names.hpp"
 #include "effects/effect.hpp"
 #include "levelset/params.hpp"
 #include "levelset/reinit.hpp"
@@ -27,7 +28,7 @@ class Reinit : public Effect {
     p_.subcellFix = r.boolean("subcell_fix", false);
     r.finish();
   }
-  void declareFields(FieldStore& f) const override { f.declare("psi", Centring::Cell, 1, name()); }
+  void declareFields(FieldStore& f) const override { f.declare(field::psi, Centring::Cell, 1, name()); }
   void setup(State& st) override {
     p_.kappa = geo_.kappa(st.grid);
     p_.band = geo_.band(st.grid);
@@ -41,7 +42,7 @@ class Reinit : public Effect {
     // been advected when this runs: re-initialise after every interval-th step.
     p.add(Stage::Corrections, name(), "Eikonal + local volume constraint, Eq. (17)-(21)", [this](State& st) {
       if ((st.step + 1) % interval_ != 0) return;
-      const ReinitStats s = re_->run(*st.halo, st.fields.scalar("psi"));
+      const ReinitStats s = re_->run(*st.halo, st.fields.scalar(field::psi));
       ++calls_;
       bandTotal_ += double(s.bandCells);
       st.diag["reinit_band_cells"] = double(s.bandCells);

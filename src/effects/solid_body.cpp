@@ -41,6 +41,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/field_names.hpp"
 #include "core/index_space.hpp"
 #include "effects/effect.hpp"
 #include "effects/solid_body.hpp"
@@ -86,8 +87,8 @@ class SolidBody : public Effect {
     g_ = s.gravity;
   }
   void declareFields(FieldStore& f) const override {
-    f.declare("psi", Centring::Cell, 1, name());
-    f.declare("velocity", Centring::Node, 3, name());
+    f.declare(field::psi, Centring::Cell, 1, name());
+    f.declare(field::velocity, Centring::Node, 3, name());
   }
   void setup(State& st) override {
     const Grid& g = st.grid;
@@ -150,8 +151,8 @@ class SolidBody : public Effect {
 
 void SolidBody::measure(State& st, double time) {
   const Grid& g = st.grid;
-  const Field psi = st.fields.scalar("psi");
-  const VecField u = st.fields.vector("velocity");
+  const Field psi = st.fields.scalar(field::psi);
+  const VecField u = st.fields.vector(field::velocity);
   const double kappa = geo_.kappa(g), band = 2 * hmin_, hm = hmin_;
   const SolidTargets tg = targets_;
   SolidAcc acc = solidMoments(g, psi, u, kappa, band, hm, tg); // moments about the domain centre r

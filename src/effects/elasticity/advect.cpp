@@ -7,6 +7,7 @@
 //   q1 = q^n + dt R(q^n);  q^{n+1} = (q^n + q1 + dt R(q1)) / 2
 // over the bounding box of the band's cells on this rank. Cells outside the
 // band (psi <= -(kappa + band h)) hold tau_S = 0.
+#include "core/field_names.hpp"
 #include "core/boundary.hpp"
 #include "effects/elasticity/elasticity.hpp"
 #include "kernels/extension.hpp"
@@ -17,7 +18,7 @@ namespace voigt {
 
 void Elasticity::buildLists(State& st) {
   const Grid& g = st.grid;
-  Field psi = st.fields.scalar("psi");
+  Field psi = st.fields.scalar(field::psi);
   std::swap(owned_, prev_);
   nPrev_ = nOwned_;
   nOwned_ = elastic::buildActiveList(g, psi, threshold_, cellRange(g), owned_);
@@ -30,8 +31,8 @@ void Elasticity::advect(State& st) {
   const Grid& g = st.grid;
   buildLists(st); // psi is already at t^{n+1} (level_set advects first)
   const SymTensorField t = solidStressField(st.fields);
-  VecField u = st.fields.vector("velocity");
-  Field psi = st.fields.scalar("psi");
+  VecField u = st.fields.vector(field::velocity);
+  Field psi = st.fields.scalar(field::psi);
   VecField on = st.fields.vector("solid_stress_old"), os = st.fields.vector("solid_stress_old_shear");
   const Field o[6] = {on.c[0], on.c[1], on.c[2], os.c[0], os.c[1], os.c[2]};
   const Range3 box = elastic::listBox(g, owned_, nOwned_);
@@ -59,7 +60,7 @@ void Elasticity::advect(State& st) {
 // outside the transport), ghosts refreshed before each.
 void Elasticity::extend(State& st) {
   const SymTensorField t = solidStressField(st.fields), b = symTensorField(st.fields, "solid_stress_old");
-  Field psi = st.fields.scalar("psi");
+  Field psi = st.fields.scalar(field::psi);
   // Only the fluid-side cells change; both buffers hold the others' values.
   const int nSide = extension::fluidSide(psi, st.grid, owned_, nOwned_, below_, side_cells_);
   extension::copySolidSide(st.grid, psi, t, b, owned_, nOwned_, below_);

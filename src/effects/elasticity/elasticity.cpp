@@ -10,6 +10,7 @@
 //                  rotations are applied (kernels/elastic.hpp header),
 //                fluid_side: integrate | extend | blend (default extend): the
 //                  stress of the band's fluid side (elasticity.hpp header)}
+#include "core/field_names.hpp"
 #include "effects/elasticity/elasticity.hpp"
 
 #include <mpi.h>
@@ -71,8 +72,8 @@ void Elasticity::configure(const Scene& s, const Published& pub) {
 
 void Elasticity::declareFields(FieldStore& f) const {
   const std::string me = name();
-  f.declare("psi", Centring::Cell, 1, me);
-  f.declare("velocity", Centring::Node, 3, me);
+  f.declare(field::psi, Centring::Cell, 1, me);
+  f.declare(field::velocity, Centring::Node, 3, me);
   for (const char* n : {"solid_stress", "solid_stress_shear", "solid_stress_old", "solid_stress_old_shear"})
     f.declare(n, Centring::Cell, 3, me);
   f.declare("S2", Centring::Cell, 1, me);
@@ -108,7 +109,7 @@ void Elasticity::setup(State& st) {
 
   // Initial stress where psi > 0 (psi is set up: level_set runs first).
   const SymTensorField t = solidStressField(st.fields);
-  Field psi = st.fields.scalar("psi");
+  Field psi = st.fields.scalar(field::psi);
   elastic::initialStress(g, psi, t, tau0_);
   const double floorLog = std::log10(1e-6 * mu_) * 2; // see diagnose(): log10 of (1e-6 mu_S)^2
   Kokkos::deep_copy(st.fields.scalar("S2"), 0.0);
@@ -157,7 +158,7 @@ void Elasticity::loadState(const nlohmann::json& j) {
 // rebuilt from the stress. The grown list is rebuilt from psi before use.
 void Elasticity::restored(State& st) {
   nOwned_ = elastic::buildNonzeroList(st.grid, solidStressField(st.fields), owned_);
-  nGrown_ = elastic::buildActiveList(st.grid, st.fields.scalar("psi"), threshold_, cellRange(st.grid, 1), grown_);
+  nGrown_ = elastic::buildActiveList(st.grid, st.fields.scalar(field::psi), threshold_, cellRange(st.grid, 1), grown_);
   refreshStress(st);
 }
 

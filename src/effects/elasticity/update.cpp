@@ -22,30 +22,31 @@
 
 #include <cmath>
 
+#include "core/field_names.hpp"
 #include "effects/elasticity/elasticity.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 
 namespace voigt {
 
 void Elasticity::addStress(State& st) {
-  elastic::addSolidStress(st.grid, st.fields.scalar("psi"), kappa_, solidStressField(st.fields),
+  elastic::addSolidStress(st.grid, st.fields.scalar(field::psi), kappa_, solidStressField(st.fields),
                           stressField(st.fields), grown_, nGrown_);
 }
 
 void Elasticity::update(State& st, double spinScale) {
-  VecField u = st.fields.vector("velocity");
+  VecField u = st.fields.vector(field::velocity);
   st.halo->exchange(u); // the corners of the owned cells
   // fluid_side extend / blend: Eq. (13) only where psi > below_ (0 / -kappa),
   // then the cells below take the stress extended from above (elasticity.hpp).
   elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, owned_, nOwned_, spinScale,
-                         rotation_, extend_ ? st.fields.scalar("psi") : Field(), extend_ ? below_ : elastic::kAll);
+                         rotation_, extend_ ? st.fields.scalar(field::psi) : Field(), extend_ ? below_ : elastic::kAll);
   if (extend_) extend(st);
 }
 
 void Elasticity::diagnose(State& st) {
   const Grid& g = st.grid;
   const SymTensorField t = solidStressField(st.fields);
-  Field psi = st.fields.scalar("psi"), S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
+  Field psi = st.fields.scalar(field::psi), S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
   double e = 0, m = 0;
   elastic::stressDiagnostics(g, t, psi, S2, lg, owned_, nOwned_, kappa_, mu_, e, m);
   double glob[2];

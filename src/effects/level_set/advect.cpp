@@ -6,6 +6,7 @@
 //   Properties, Eq. (2)-(4): rho = H rho_1 + (1 - H) rho_2, same for mu.
 #include <cmath>
 
+#include "core/field_names.hpp"
 #include "effects/level_set/level_set.hpp"
 #include "kernels/advection_faces.hpp"
 #include "kernels/levelset.hpp"
@@ -16,8 +17,8 @@ namespace voigt {
 void LevelSet::advect(State& st) {
   const Grid& g = st.grid;
   const Range3 cells = cellRange(g);
-  Field psi = st.fields.scalar("psi"), old = st.fields.scalar("psi_old");
-  VecField u = st.fields.vector("velocity");
+  Field psi = st.fields.scalar(field::psi), old = st.fields.scalar("psi_old");
+  VecField u = st.fields.vector(field::velocity);
   st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
   const double dt = st.dt;
   Kokkos::deep_copy(old, psi);
@@ -30,16 +31,16 @@ void LevelSet::advect(State& st) {
 }
 
 void LevelSet::blend(State& st) {
-  if (!st.fields.allocated("density")) return; // kinematic scenes: nothing to blend
+  if (!st.fields.allocated(field::density)) return; // kinematic scenes: nothing to blend
   const Grid& g = st.grid;
-  blendProperties(st.fields.scalar("psi"), geo_.kappa(g), rho1_, rho2_, mu1_, mu2_, st.fields.scalar("density"),
-                  st.fields.scalar("viscosity"), cellRange(g, g.ng));
+  blendProperties(st.fields.scalar(field::psi), geo_.kappa(g), rho1_, rho2_, mu1_, mu2_, st.fields.scalar(field::density),
+                  st.fields.scalar(field::viscosity), cellRange(g, g.ng));
   st.propertiesChanged = true;
 }
 
 void LevelSet::diagnose(State& st) {
   const Grid& g = st.grid;
-  PhaseMeasures m = localPhaseMeasures(g, st.fields.scalar("psi"), geo_.kappa(g));
+  PhaseMeasures m = localPhaseMeasures(g, st.fields.scalar(field::psi), geo_.kappa(g));
   double loc[3] = {m.volume, m.sharpVolume, m.area}, glob[3];
   MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
   volume_ = glob[0];

@@ -1,4 +1,5 @@
 // level_set: scene section, fields, the initial shape and its signed distance.
+#include "core/field_names.hpp"
 #include "effects/level_set/level_set.hpp"
 
 #include <cmath>
@@ -41,7 +42,7 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
 }
 
 void LevelSet::declareFields(FieldStore& f) const {
-  f.declare("psi", Centring::Cell, 1, name());
+  f.declare(field::psi, Centring::Cell, 1, name());
   f.declare("psi_old", Centring::Cell, 1, name());
 }
 
@@ -51,7 +52,7 @@ void LevelSet::refreshGhosts(State& st, const Field& f) const {
 }
 
 void LevelSet::setup(State& st) {
-  Field psi = st.fields.scalar("psi");
+  Field psi = st.fields.scalar(field::psi);
   evaluateShape(st.grid, shape_, psi);
   if (fastMarching_) fm_ = fastMarching(st.grid, psi);
   refreshGhosts(st, psi);

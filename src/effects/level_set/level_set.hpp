@@ -6,6 +6,7 @@
 //   advect.cpp     Eq. (1) advection (Advection stage), Eq. (2)-(4) blending
 //                  (Properties stage), volume and area diagnostics
 //   volume.cpp     global volume correction (Corrections stage, after reinit)
+#include "core/field_names.hpp"
 #include "effects/effect.hpp"
 #include "kernels/advection.hpp"
 #include "levelset/fast_marching.hpp"
@@ -27,7 +28,7 @@ class LevelSet : public Effect {
   void summary(const State& st, nlohmann::json& j) const override;
   void saveState(nlohmann::json& j) const override;
   void loadState(const nlohmann::json& j) override;
-  void restored(State& st) override { refreshGhosts(st, st.fields.scalar("psi")); }
+  void restored(State& st) override { refreshGhosts(st, st.fields.scalar(field::psi)); }
 
   // Stages (public so tests can drive them).
   void advect(State& st);

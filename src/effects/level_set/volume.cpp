@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/field_names.hpp"
 #include "effects/level_set/level_set.hpp"
 #include "kernels/levelset.hpp"
 
@@ -26,12 +27,12 @@ namespace voigt {
 
 void LevelSet::correctVolume(State& st) {
   const Grid& g = st.grid;
-  Field psi = st.fields.scalar("psi");
+  Field psi = st.fields.scalar(field::psi);
   const double kappa = geo_.kappa(g), hmin = LevelSetGeometry::hMin(g);
   double loc[3] = {0, 0, 0}, glob[3];
   localVolumeAndDerivative(g, psi, kappa, loc[0], loc[1]);
-  if (std::any_of(open_, open_ + 6, [](bool b) { return b; }) && st.fields.allocated("velocity"))
-    loc[2] = localOpenBoundaryFlux(g, psi, st.fields.vector("velocity"), kappa, open_);
+  if (std::any_of(open_, open_ + 6, [](bool b) { return b; }) && st.fields.allocated(field::velocity))
+    loc[2] = localOpenBoundaryFlux(g, psi, st.fields.vector(field::velocity), kappa, open_);
   MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
   target_ -= st.dt * glob[2];
   double s = 0;

@@ -13,6 +13,7 @@
 // own in, Eq. 9), f from the Forces stage.
 #include <algorithm>
 
+#include "core/field_names.hpp"
 #include "core/boundary.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 #include "kernels/momentum.hpp"
@@ -41,7 +42,7 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
   p.run(Stage::Stress, st);
   VecField coef = st.fields.vector("proj_coef");
   addStressDivergence(g, stressField(st.fields), coef, rhs, nodes);
-  subtractGradient(g, st.fields.scalar("pressure"), coef, 1.0, rhs, nodes);
+  subtractGradient(g, st.fields.scalar(field::pressure), coef, 1.0, rhs, nodes);
   p.run(Stage::Forces, st);
 }
 
@@ -49,7 +50,7 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
 // projection's 1/rho), ghosts included for the MUSCL stencil.
 void NavierStokes::nodeDensity(State& st) {
   const Grid& g = st.grid;
-  Field rho = st.fields.scalar("density"), r0 = st.fields.scalar("momentum_density");
+  Field rho = st.fields.scalar(field::density), r0 = st.fields.scalar("momentum_density");
   voigt::nodeDensity(g, rho, r0, nodeRange(g));
   st.halo->exchange(r0);
   fillNodeGhostsEven(g, r0);
@@ -61,9 +62,9 @@ void NavierStokes::nodeDensity(State& st) {
 // viscous term leaves a non-gradient residue (7.8e-8 in hydrostatic rest).
 void NavierStokes::initialPressure(State& st, Pipeline& p) {
   const Grid& g = st.grid;
-  VecField u = st.fields.vector("velocity"), acc = st.fields.vector("acceleration");
-  IntField mask = st.fields.integer("fix_mask");
-  Field pr = st.fields.scalar("pressure"), dp = st.fields.scalar("pressure_increment");
+  VecField u = st.fields.vector(field::velocity), acc = st.fields.vector("acceleration");
+  IntField mask = st.fields.integer(field::fixMask);
+  Field pr = st.fields.scalar(field::pressure), dp = st.fields.scalar("pressure_increment");
   Field rhs = st.fields.scalar("poisson_rhs"), div = st.fields.scalar("divergence");
   // Declared only with the conservative form.
   const Field r0 = conservative_ ? st.fields.scalar("momentum_density") : Field();
@@ -95,10 +96,10 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   }
   const Grid& g = st.grid;
   const Range3 nodes = nodeRange(g);
-  VecField u = st.fields.vector("velocity"), u0 = st.fields.vector("velocity_old");
+  VecField u = st.fields.vector(field::velocity), u0 = st.fields.vector("velocity_old");
   VecField rhs = st.fields.vector("acceleration");
-  IntField mask = st.fields.integer("fix_mask");
-  VecField val = st.fields.vector("fix_value");
+  IntField mask = st.fields.integer(field::fixMask);
+  VecField val = st.fields.vector(field::fixValue);
   const double dt = st.dt;
   // Oscillating walls: prescribed values at t^{n+1}. Heun's stages sit at t^n
   // and t^{n+1}: u^n already holds the wall value at t^n, and both the stage-1

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/field_names.hpp"
 #include "core/boundary.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 #include "kernels/reductions.hpp"
@@ -21,8 +22,8 @@ namespace voigt {
 // existing cells around the node).
 void NavierStokes::refreshCoefficients(State& st) {
   const Grid& g = st.grid;
-  Field rho = st.fields.scalar("density");
-  IntField mask = st.fields.integer("fix_mask");
+  Field rho = st.fields.scalar(field::density);
+  IntField mask = st.fields.integer(field::fixMask);
   VecField coef = st.fields.vector("proj_coef");
   st.halo->exchange(rho);
   fillCellGhostsEven(g, rho);
@@ -52,8 +53,8 @@ void NavierStokes::reportCap(State& st, const PoissonStats& s) {
 void NavierStokes::project(State& st) {
   const Grid& g = st.grid;
   const double dt = st.dt;
-  VecField u = st.fields.vector("velocity"), coef = st.fields.vector("proj_coef");
-  Field p = st.fields.scalar("pressure"), dp = st.fields.scalar("pressure_increment");
+  VecField u = st.fields.vector(field::velocity), coef = st.fields.vector("proj_coef");
+  Field p = st.fields.scalar(field::pressure), dp = st.fields.scalar("pressure_increment");
   Field rhs = st.fields.scalar("poisson_rhs"), div = st.fields.scalar("divergence");
   const Range3 cells = cellRange(g);
 

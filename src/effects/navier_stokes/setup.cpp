@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/field_names.hpp"
 #include "core/boundary.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 #include "kernels/initial_flow.hpp"
@@ -48,27 +49,27 @@ void NavierStokes::configure(const Scene& s, const Published& pub) {
 
 void NavierStokes::declareFields(FieldStore& f) const {
   const std::string me = name();
-  f.declare("velocity", Centring::Node, 3, me);
+  f.declare(field::velocity, Centring::Node, 3, me);
   f.declare("velocity_old", Centring::Node, 3, me);
   f.declare("acceleration", Centring::Node, 3, me);
   f.declare("proj_coef", Centring::Node, 3, me);
-  f.declare("fix_value", Centring::Node, 3, me);
-  f.declare("fix_mask", Centring::Node, 1, me, true);
+  f.declare(field::fixValue, Centring::Node, 3, me);
+  f.declare(field::fixMask, Centring::Node, 1, me, true);
   if (conservative_)
     for (const char* n : {"momentum_density", "momentum_density_stage", "momentum_density_rhs"})
       f.declare(n, Centring::Node, 1, me);
   for (const char* n : {"tau_xx", "tau_yy", "tau_zz", "tau_xy", "tau_yz", "tau_zx"})
     f.declare(n, Centring::Cell, 1, me);
-  for (const char* n : {"pressure", "pressure_increment", "poisson_rhs", "divergence", "density", "viscosity"})
+  for (const char* n : {field::pressure, "pressure_increment", "poisson_rhs", "divergence", field::density, field::viscosity})
     f.declare(n, Centring::Cell, 1, me);
 }
 
 void NavierStokes::setup(State& st) {
   const Grid& g = st.grid;
   auto& F = st.fields;
-  buildFaceMask(g, *scene_, F.integer("fix_mask"), F.vector("fix_value"));
-  Kokkos::deep_copy(F.scalar("density"), scene_->fluidMaterial().density);
-  Kokkos::deep_copy(F.scalar("viscosity"), scene_->fluidMaterial().viscosity);
+  buildFaceMask(g, *scene_, F.integer(field::fixMask), F.vector(field::fixValue));
+  Kokkos::deep_copy(F.scalar(field::density), scene_->fluidMaterial().density);
+  Kokkos::deep_copy(F.scalar(field::viscosity), scene_->fluidMaterial().viscosity);
   initialVelocity(st);
   solver_ = makePoissonSolver(g, poissonSettings(scene_->projection));
   st.propertiesChanged = true;
@@ -77,8 +78,8 @@ void NavierStokes::setup(State& st) {
 void NavierStokes::initialVelocity(State& st) {
   const Grid& g = st.grid;
   const InitialCfg& ic = scene_->initial;
-  VecField u = st.fields.vector("velocity");
-  Field p = st.fields.scalar("pressure");
+  VecField u = st.fields.vector(field::velocity);
+  Field p = st.fields.scalar(field::pressure);
   InitialFlow f;
   f.mode = ic.velocity == "uniform" ? 1 : ic.velocity == "taylor_green" ? 2
          : ic.velocity == "couette" ? 3 : ic.velocity == "poiseuille" ? 4 : 0;
@@ -86,12 +87,12 @@ void NavierStokes::initialVelocity(State& st) {
   for (int d = 0; d < 3; ++d) f.U[d] = ic.uniform[d];
   f.wLo = scene_->bc[2].velocity[0], f.wHi = scene_->bc[3].velocity[0];
   fillInitialFlow(g, f, u, p);
-  applyFixed(st.fields.integer("fix_mask"), st.fields.vector("fix_value"), u,
+  applyFixed(st.fields.integer(field::fixMask), st.fields.vector(field::fixValue), u,
              Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}});
 }
 
 void NavierStokes::restored(State& st) {
-  fillVelocityGhosts(st.grid, *scene_, st.fields.vector("velocity"));
+  fillVelocityGhosts(st.grid, *scene_, st.fields.vector(field::velocity));
 }
 
 void NavierStokes::registerTasks(Pipeline& p) {
@@ -101,7 +102,7 @@ void NavierStokes::registerTasks(Pipeline& p) {
             ") + stress + forces - grad p^n",
         [this](State& st) { momentum(st, *pipeline_); });
   p.add(Stage::Stress, name(), "viscous stress mu D at cells (Eq. 10)", [](State& st) {
-    viscousStress(st.grid, st.evalU, st.fields.scalar("viscosity"), stressField(st.fields),
+    viscousStress(st.grid, st.evalU, st.fields.scalar(field::viscosity), stressField(st.fields),
                   cellRange(st.grid, 1));
   });
   p.add(Stage::Projection, name(), std::string("incremental pressure correction, ") +
@@ -151,14 +152,14 @@ std::string solverSummary(const ProjectionCfg& P) {
 
 DtLimit NavierStokes::dtLimit(const State& st) const {
   const Grid& g = st.grid;
-  VecField u = st.fields.vector("velocity");
+  VecField u = st.fields.vector(field::velocity);
   DtLimit best;
   double inv = 0;
   VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) inv += globalMaxAbs(g, u.c[d], nodeRange(g)) / g.h[d];
   if (inv > 0) best = {scene_->time.cfl / inv, "advective CFL"};
   // Explicit viscous limit dt <= 1 / (2 nu sum 1/h^2) (NUMERICS.md, = h^2/(6 nu)).
-  Field mu = st.fields.scalar("viscosity"), rho = st.fields.scalar("density");
+  Field mu = st.fields.scalar(field::viscosity), rho = st.fields.scalar(field::density);
   const double nuMax = maxKinematicViscosity(mu, rho, cellRange(g));
   double nuG = nuMax;
   MPI_Allreduce(&nuMax, &nuG, 1, MPI_DOUBLE, MPI_MAX, g.comm);
