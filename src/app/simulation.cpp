@@ -1,4 +1,3 @@
-#include "core/field_names.hpp"
 #include "app/simulation.hpp"
 
 #include <unistd.h>
@@ -13,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/field_names.hpp"
 #include "core/index_space.hpp"
 #include "io/checkpoint.hpp"
 #include "io/fields_out.hpp"

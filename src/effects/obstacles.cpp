@@ -1,8 +1,8 @@
 // obstacles: rigid bodies as prescribed node velocities (paper: "cells within
 // the cylinder set to zero velocity each step"). Their nodes join the fixed
 // mask, so the projection gives them no correction and no mass leaks through.
-#include "core/field_names.hpp"
 #include "core/boundary.hpp"
+#include "core/field_names.hpp"
 #include "effects/effect.hpp"
 #include "kernels/reductions.hpp"
 

@@ -49,16 +49,19 @@ void NullSpace::analyze(const RowVector& v, double* s) const {
     s[0] = sum;
     return;
   }
-  nullAnalyze(NullBasis{G_, rows_, off_[0], off_[1], off_[2]}, nb_, v, ident_, nrows_, s);
+  nullAnalyze(basis(), nb_, v, ident_, nrows_, s);
   MPI_Allreduce(MPI_IN_PLACE, s, nb_, MPI_DOUBLE, MPI_SUM, comm_);
 }
 
 void NullSpace::synthesize(const double* a, const RowVector& v, bool subtract) const {
+  if (constantOnly_) { // the other coefficients are zero (remove()): nothing to copy
+    nullSynthesizeConstant(a[0], v, ident_, nrows_, subtract);
+    return;
+  }
   auto ha = Kokkos::create_mirror_view(coef_);
   for (int m = 0; m < nb_; ++m) ha(m) = a[m];
   Kokkos::deep_copy(coef_, ha);
-  if (constantOnly_) nullSynthesizeConstant(a[0], v, ident_, nrows_, subtract); // the others are zero (remove())
-  else nullSynthesize(NullBasis{G_, rows_, off_[0], off_[1], off_[2]}, coef_, v, ident_, nrows_, subtract);
+  nullSynthesize(basis(), coef_, v, ident_, nrows_, subtract);
 }
 
 void NullSpace::planeNorms(const RowVector& y, int axis, double* ps) const {
@@ -80,7 +83,7 @@ void NullSpace::rebuild(const RowFlags& ident, const Apply& apply, double scale)
   std::vector<double> Gm((size_t)nb * nb, 0.0);
   {
     auto hid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ident);
-    const NullBasis B{G_, rows_, off_[0], off_[1], off_[2]};
+    const NullBasis B = basis();
     for (int r = 0; r < nrows_; ++r) {
       if (hid(r)) continue;
       int idx[4];

@@ -69,6 +69,7 @@ class NullSpace {
   void synthesize(const double* a, const RowVector& v, bool subtract) const; // v = M a or v -= M a
   void planeNorms(const RowVector& y, int axis, double* ps) const;           // per-plane sum of y^2
   double norm2(const RowVector& v) const;
+  NullBasis basis() const { return NullBasis{G_, rows_, off_[0], off_[1], off_[2]}; }
 
   GridGeom G_;
   CellRows rows_;

@@ -7,11 +7,11 @@
 //   q1 = q^n + dt R(q^n);  q^{n+1} = (q^n + q1 + dt R(q1)) / 2
 // over the bounding box of the band's cells on this rank. Cells outside the
 // band (psi <= -(kappa + band h)) hold tau_S = 0.
-#include "core/field_names.hpp"
 #include "core/boundary.hpp"
+#include "core/field_names.hpp"
 #include "effects/elasticity/elasticity.hpp"
-#include "kernels/extension.hpp"
 #include "kernels/advection_faces.hpp"
+#include "kernels/extension.hpp"
 #include "kernels/levelset.hpp"
 
 namespace voigt {

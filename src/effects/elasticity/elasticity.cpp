@@ -10,7 +10,6 @@
 //                  rotations are applied (kernels/elastic.hpp header),
 //                fluid_side: integrate | extend | blend (default extend): the
 //                  stress of the band's fluid side (elasticity.hpp header)}
-#include "core/field_names.hpp"
 #include "effects/elasticity/elasticity.hpp"
 
 #include <mpi.h>
@@ -19,6 +18,7 @@
 #include <cmath>
 
 #include "core/boundary.hpp"
+#include "core/field_names.hpp"
 #include "levelset/params.hpp"
 #include "scene/reader.hpp"
 

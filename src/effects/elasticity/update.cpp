@@ -22,8 +22,8 @@
 
 #include <cmath>
 
-#include "core/field_names.hpp"
 #include "effects/elasticity/elasticity.hpp"
+#include "core/field_names.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 
 namespace voigt {

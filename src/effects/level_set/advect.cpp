@@ -6,8 +6,8 @@
 //   Properties, Eq. (2)-(4): rho = H rho_1 + (1 - H) rho_2, same for mu.
 #include <cmath>
 
-#include "core/field_names.hpp"
 #include "effects/level_set/level_set.hpp"
+#include "core/field_names.hpp"
 #include "kernels/advection_faces.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/reductions.hpp"

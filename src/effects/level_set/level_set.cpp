@@ -1,10 +1,10 @@
 // level_set: scene section, fields, the initial shape and its signed distance.
-#include "core/field_names.hpp"
 #include "effects/level_set/level_set.hpp"
 
 #include <cmath>
 
 #include "core/boundary.hpp"
+#include "core/field_names.hpp"
 #include "scene/reader.hpp"
 
 namespace voigt {

@@ -19,8 +19,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/field_names.hpp"
 #include "effects/level_set/level_set.hpp"
+#include "core/field_names.hpp"
 #include "kernels/levelset.hpp"
 
 namespace voigt {

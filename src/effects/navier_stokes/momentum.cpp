@@ -13,8 +13,8 @@
 // own in, Eq. 9), f from the Forces stage.
 #include <algorithm>
 
-#include "core/field_names.hpp"
 #include "core/boundary.hpp"
+#include "core/field_names.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 #include "kernels/momentum.hpp"
 

@@ -11,8 +11,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "core/field_names.hpp"
 #include "core/boundary.hpp"
+#include "core/field_names.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 #include "kernels/reductions.hpp"
 

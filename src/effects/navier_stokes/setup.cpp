@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/field_names.hpp"
 #include "core/boundary.hpp"
+#include "core/field_names.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
 #include "kernels/initial_flow.hpp"
 #include "kernels/reductions.hpp"
