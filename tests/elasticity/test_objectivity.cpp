@@ -77,6 +77,7 @@
 #include "effects/elasticity/elasticity.hpp"
 #include "kernels/elastic.hpp"
 #include "scene/reader.hpp"
+#include "elasticity/rotating_disk.hpp"
 #include "elasticity/tensor_util.hpp"
 #include "support/flow.hpp"
 
@@ -86,10 +87,7 @@ using test::maxDiff;
 
 namespace {
 
-constexpr double kOmega = 2 * M_PI;               // one turn per unit time
-constexpr double kCx = 0.5, kCy = 0.5;            // rotation centre
-constexpr double kDx = 0.5, kDy = 0.7, kR = 0.2;  // disk centre and radius at t = 0
-const double kTau0[6] = {1, -1, 0.3, 0.5, 0.2, -0.1}; // xx yy zz xy yz zx (Pa)
+using namespace rotating_disk;
 
 // rotation "" leaves the key out (the scene default).
 // fluid_side: integrate (the paper's), so that the whole field is the rotated
@@ -98,25 +96,7 @@ const double kTau0[6] = {1, -1, 0.3, 0.5, 0.2, -0.1}; // xx yy zz xy yz zx (Pa)
 // after 800 steps, and transport carries that into the interior (measured
 // 1.4e-9 against the 1e-9 bound).
 std::string rotationScene(int n, double cfl, const std::string& rotation) {
-  const std::string key = rotation.empty() ? "" : "rotation: " + rotation + ",";
-  char buf[2048];
-  std::snprintf(buf, sizeof buf,
-                "name: objectivity\n"
-                "domain: {lo: [0, 0, 0], hi: [1, 1, %.17g], cells: [%d, %d, 2], ranks: [0, 0, 1]}\n"
-                "boundaries: {default: {type: slip}, z-: {type: periodic}, z+: {type: periodic}}\n"
-                "time: {end: 1, cfl: %.17g}\n"
-                "materials: {disk: {density: 1, shear_modulus: 1.0e-3}, air: {density: 1}}\n"
-                "fluid: air\n"
-                "effects: [prescribed_flow, level_set, elasticity]\n"
-                "prescribed_flow: {type: rotation, center: [%g, %g, 0], omega: [0, 0, %.17g]}\n"
-                "level_set: {phase: disk, fast_marching: false,\n"
-                "            shape: {type: cylinder, center: [%g, %g, 0], radius: %g, axis: z}}\n"
-                "elasticity: {fluid_side: integrate, %s\n"
-                "             initial_stress: {xx: %g, yy: %g, zz: %g, xy: %g, yz: %g, zx: %g}}\n"
-                "output: {enabled: false}\n",
-                2.0 / n, n, n, cfl, kCx, kCy, kOmega, kDx, kDy, kR, key.c_str(), kTau0[0], kTau0[1], kTau0[2],
-                kTau0[3], kTau0[4], kTau0[5]);
-  return buf;
+  return rotating_disk::scene(n, cfl, rotation, "integrate");
 }
 
 // R tau R^T for R the rotation about z by theta.

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,20 @@ namespace {
 bool full() {
   const char* e = std::getenv("VOIGT_STABILITY_FULL");
   return e && std::string(e) == "1";
+}
+
+// VOIGT_STABILITY_SET="level_set.smoothing=1 ..." runs the matrix with these --set
+// overrides (to measure a default before changing it); each applies only to the
+// cases whose scene has its top-level section, e.g. no level_set in single-phase cases.
+std::vector<std::string> envOverrides(const std::string& yaml) {
+  std::vector<std::string> out;
+  const char* e = std::getenv("VOIGT_STABILITY_SET");
+  std::istringstream in(e ? e : "");
+  for (std::string a; in >> a;) {
+    const std::string section = a.substr(0, a.find_first_of(".="));
+    if (yaml.rfind(section + ":", 0) == 0 || yaml.find("\n" + section + ":") != std::string::npos) out.push_back(a);
+  }
+  return out;
 }
 
 // Amplitude: for a rigidly rotated stressed solid (prescribed flow, no mass), the
@@ -111,7 +126,7 @@ double diagOr(const State& st, const char* k, double d = 0) {
 // (kg) for the gravity energy scale.
 Result runCase(const std::string& name, const std::string& gridText, const std::string& yaml, long steps,
                Energy mode, double phaseRelease = 0, double tEnd = 1e300, const char* expectedGrowth = nullptr) {
-  Scene sc = test::scene(yaml);
+  Scene sc = loadSceneWithEffectsFromString(yaml, name, envOverrides(yaml));
   RunOptions o;
   o.progress = false;
   Simulation sim(sc, MPI_COMM_WORLD, o);

@@ -27,6 +27,8 @@
 // Diagnosis: VOIGT_STABILITY_TRACE=1 prints ~25 rows of each run's series,
 // VOIGT_STABILITY_SPLIT=1 the kinetic energy and max speed split into heavy /
 // interface / light nodes every 10 steps (rank 0's part of the grid).
+// VOIGT_STABILITY_SET="key=value ..." applies --set overrides to every case
+// that has the key's section (matrix_runner.hpp), e.g. level_set.smoothing=1.
 #include "stability/matrix_runner.hpp"
 
 
