@@ -63,9 +63,33 @@ study_one() {
   echo "== $id -> $dir (${ranks} rank(s), $2)"
   "$py" "$runs" start "$ledger" "$id" "${meta[@]}" "$ranks"
   since=$(date +%s)
-  rc=0
-  "${launch[@]}" "$voigt" run "$study_scene" -o "$dir" "${extra[@]}" "${args[@]}" || rc=$?
+  # In the background, so that study_warn can pass a signal on while it runs.
+  "${launch[@]}" "$voigt" run "$study_scene" -o "$dir" "${extra[@]}" "${args[@]}" &
+  study_child=$!
+  study_wait
   "$py" "$runs" end "$ledger" "$id" "$dir" "$rc" "$since"
+}
+
+# SIGUSR1 / SIGTERM / SIGINT to this script (a batch system's warning before its
+# time limit, e.g. SLURM --signal=B:USR1@300, or a kill): passed on to the run as
+# SIGUSR1, which checkpoints and exits 75 (mpirun forwards it to every rank; a
+# SIGTERM to mpirun would kill the ranks after 1 s). The ledger then says
+# wall_limit and the script exits 75: --resume continues.
+study_child=""
+study_warn() { if [ -n "$study_child" ]; then kill -USR1 "$study_child" 2> /dev/null || true; fi; }
+trap study_warn USR1 TERM INT
+# Sets rc to the run's exit code. A trapped signal interrupts `wait` (status > 128)
+# while the run goes on: wait again until it has ended.
+study_wait() {
+  local s
+  while :; do
+    rc=0
+    wait "$study_child" || rc=$? # (set -e)
+    kill -0 "$study_child" 2> /dev/null || break
+  done
+  # Ended during the last interrupted wait: its own status is still to collect (127: collected).
+  if [ "$rc" -gt 128 ]; then s=0; wait "$study_child" 2> /dev/null || s=$?; [ "$s" = 127 ] || rc=$s; fi
+  study_child=""
 }
 
 # Out of time (75) or stopped by a signal: the unfinished runs continue with --resume.

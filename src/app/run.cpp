@@ -26,14 +26,17 @@ namespace voigt {
 namespace fs = std::filesystem;
 
 namespace {
-// SIGINT/SIGTERM: the handler only records the signal; the time loop acts on
-// it between steps, collectively (an MPI_MAX over ranks), so a signal that
-// reaches one rank stops them all at the same step.
+// SIGINT/SIGTERM/SIGUSR1: the handler only records the signal; the time loop acts
+// on it between steps, collectively (an MPI_MAX over ranks), so a signal that
+// reaches one rank stops them all at the same step. SIGUSR1 is a batch system's
+// warning before its time limit (SLURM --signal=USR1@T; Open MPI's mpirun forwards
+// it to every rank, where SIGTERM to mpirun kills the ranks 1 s later): it stops
+// the run as --wall-limit does (checkpoint, exit 75, resumable).
 volatile std::sig_atomic_t gSignal = 0;
 extern "C" void onSignal(int s) { gSignal = s; }
 
 struct SignalGuard {
-  struct sigaction oldInt{}, oldTerm{};
+  struct sigaction oldInt{}, oldTerm{}, oldUsr1{};
   bool on = false;
   explicit SignalGuard(bool enable) : on(enable) {
     if (!on) return;
@@ -44,11 +47,13 @@ struct SignalGuard {
     sa.sa_flags = SA_RESTART | SA_RESETHAND; // a second Ctrl-C kills at once
     sigaction(SIGINT, &sa, &oldInt);
     sigaction(SIGTERM, &sa, &oldTerm);
+    sigaction(SIGUSR1, &sa, &oldUsr1);
   }
   ~SignalGuard() {
     if (!on) return;
     sigaction(SIGINT, &oldInt, nullptr);
     sigaction(SIGTERM, &oldTerm, nullptr);
+    sigaction(SIGUSR1, &oldUsr1, nullptr);
   }
 };
 // --wall-limit: stop before the next step when it, a checkpoint and a margin might
@@ -156,6 +161,11 @@ RunResult Simulation::run() {
       flags[1] = wall.reached(now, flags[2] ? 2 * ck : ck); // a wall-interval checkpoint first
     }
     if (opt_.handleSignals || wallChecks) MPI_Allreduce(MPI_IN_PLACE, flags, 3, MPI_INT, MPI_MAX, g.comm);
+    if (flags[0] == SIGUSR1) { // the batch system's warning: as the wall limit
+      r.wallLimit = true;
+      r.wallWarning = true;
+      break;
+    }
     if (flags[0]) {
       r.signal = flags[0];
       break;
@@ -199,9 +209,10 @@ RunResult Simulation::run() {
     if (checkpointer_ && lastCheckpointStep_ != st_.step) r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
     else if (checkpointer_ && r.checkpoint.empty()) r.checkpoint = findCheckpoint(g.comm, opt_.outDir);
     finish(); // the wall time with the checkpoint
-    writeSummary(r, r.wallLimit ? std::string("wall_limit")
-                                : std::string("signal ") +
-                                      (r.signal == SIGINT ? "SIGINT" : r.signal == SIGTERM ? "SIGTERM" : "?"));
+    writeSummary(r, r.wallWarning ? std::string("signal SIGUSR1")
+                    : r.wallLimit ? std::string("wall_limit")
+                                  : std::string("signal ") +
+                                        (r.signal == SIGINT ? "SIGINT" : r.signal == SIGTERM ? "SIGTERM" : "?"));
     return r;
   }
   // A run with checkpoints ends with one, so it can be extended (--restart --end-time ...);

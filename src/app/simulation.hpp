@@ -34,7 +34,8 @@ struct RunOptions {
   // Restart from a checkpoint: a checkpoint file, or a directory whose newest
   // readable checkpoint is used (`voigt run --restart`: the output directory).
   std::string restart;
-  // SIGINT/SIGTERM: finish the current step, write a checkpoint, stop (voigt run).
+  // SIGINT/SIGTERM: finish the current step, write a checkpoint, stop (voigt run);
+  // SIGUSR1 the same, reported as the wall limit (exit 75, resumable).
   bool handleSignals = false;
   // Wall-clock limit in seconds (0: none), counted from MPI_Wtime() == wallStart (voigt's
   // start; -1: run()'s start). Before it would be passed, the run checkpoints and stops.
@@ -71,7 +72,8 @@ struct RunResult {
   double cellStepsPerSecond = 0;
   long poissonCapped = 0;     // Poisson solves that stopped at their iteration cap (whole run)
   int signal = 0;            // SIGINT/SIGTERM that stopped the run (0: it ran to the end)
-  bool wallLimit = false;    // stopped before RunOptions::wallLimit (resumable)
+  bool wallLimit = false;    // stopped before RunOptions::wallLimit or by SIGUSR1 (resumable)
+  bool wallWarning = false;  // ... because of SIGUSR1, the batch system's warning
   std::string checkpoint;    // the last checkpoint written ("" if none)
 };
 

@@ -116,8 +116,11 @@ int run(const Scene& scene, RunOptions opt, bool estimate) {
     return 128 + r.signal;
   }
   if (r.wallLimit) {
+    std::ostringstream why;
+    if (r.wallWarning) why << "stopped by SIGUSR1 (the batch system's time-limit warning)";
+    else why << "stopped at the wall limit (" << opt.wallLimit << " s)";
     if (rankOf() == 0)
-      std::cerr << "stopped at the wall limit (" << opt.wallLimit << " s) at step " << r.steps << ", t = " << r.simTime
+      std::cerr << why.str() << " at step " << r.steps << ", t = " << r.simTime
                 << (r.checkpoint.empty() ? std::string(" (no checkpoint: no output directory)")
                                          : "; checkpoint " + r.checkpoint + "; unfinished, resumable: continue with --restart")
                 << " (exit code " << kExitWallLimit << ")\n";
@@ -183,7 +186,7 @@ int main(int argc, char** argv) {
         });
     runCmd->footer("Exit codes: 0 done, 2 bad scene, 3 blow-up (last good state written), 75 stopped "
                    "at --wall-limit (checkpoint written; continue with --restart), 128 + N stopped by signal N "
-                   "(SIGINT, SIGTERM: checkpoint written), 1 other errors; bad arguments: CLI11's codes (>= 100).");
+                   "(SIGINT, SIGTERM: checkpoint written; SIGUSR1, a batch system's warning, stops as the wall limit: 75), 1 other errors; bad arguments: CLI11's codes (>= 100).");
     auto* checkCmd = app.add_subcommand("check", "validate a scene and print what a run would do");
     checkCmd->add_option("scene", scenePath, "scene YAML file")->required();
     checkCmd->add_option("--set", sets, "override a scene value: a.b.c=value");

@@ -3,6 +3,9 @@
 # writes summary.json ("stopped"), and exits with 128 + signal; --restart then
 # finishes bit-identical to an uninterrupted run. With 2 ranks the signal goes
 # to ONE rank only: all must stop at the same step (the stop is collective).
+# SIGUSR1 (a batch system's time-limit warning) is sent to mpirun itself, as
+# SLURM's --signal does: Open MPI forwards it to every rank, and the run stops
+# as at --wall-limit (exit 75, summary state wall_limit), then restarts the same.
 #   signal_test.sh VOIGT SOURCE_DIR [RANKS]
 set -u
 VOIGT=$1
@@ -36,7 +39,7 @@ launch "$WORK/ref.log" run "$SCENE" -o "$WORK/ref" --steps $N "${SETS[@]}"
 wait $PID || fail "reference run"
 ref=$(printf "%s/ref/checkpoint_%09d.h5" "$WORK" $N)
 
-for sig in INT TERM; do
+for sig in INT TERM USR1; do
   dir="$WORK/s$sig"
   launch "$WORK/$sig.log" run "$SCENE" -o "$dir" --steps $N "${SETS[@]}"
   # Wait until it is stepping (timeseries.csv has rows), then signal.
@@ -45,7 +48,9 @@ for sig in INT TERM; do
     [ "$rows" -ge 4 ] && break
     sleep 0.01
   done
-  if [ "$NP" -gt 1 ]; then
+  if [ "$NP" -gt 1 ] && [ "$sig" = USR1 ]; then
+    target=$PID # mpirun, which forwards SIGUSR1 to the ranks
+  elif [ "$NP" -gt 1 ]; then
     target=$(pgrep -P $PID | tail -1) # the last rank only
   else
     target=$PID
@@ -55,14 +60,19 @@ for sig in INT TERM; do
   wait $PID
   rc=$?
   want=$((128 + $(kill -l "$sig")))
-  if [ "$NP" -gt 1 ]; then
+  [ "$sig" = USR1 ] && want=75
+  if [ "$sig" = USR1 ]; then
+    [ $rc -eq 75 ] || fail "SIGUSR1: exit code $rc, expected 75"
+    grep -q "stopped by SIGUSR1 .* at step" "$WORK/$sig.log" || fail "SIGUSR1: no stop message"
+    [ "$(json "$dir/summary.json" "['state']")" = wall_limit ] || fail "SIGUSR1: summary.json state is not wall_limit"
+  elif [ "$NP" -gt 1 ]; then
     # mpirun reports a failing rank's status as its own (non-zero); the rank's code is in the log.
     [ $rc -ne 0 ] || fail "SIG$sig: exit code 0"
     grep -q "Exit code:    $want" "$WORK/$sig.log" || fail "SIG$sig: no rank exited with $want"
   else
     [ $rc -eq $want ] || fail "SIG$sig: exit code $rc, expected $want"
   fi
-  grep -q "stopped by signal $(kill -l "$sig") at step" "$WORK/$sig.log" || fail "SIG$sig: no stop message"
+  [ "$sig" = USR1 ] || grep -q "stopped by signal $(kill -l "$sig") at step" "$WORK/$sig.log" || fail "SIG$sig: no stop message"
   stopped=$(json "$dir/summary.json" "['stopped']")
   [ "$stopped" = "signal SIG$sig" ] || fail "SIG$sig: summary.json stopped = '$stopped'"
   steps=$(json "$dir/summary.json" "['steps']")

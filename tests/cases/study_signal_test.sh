@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The study scripts pass a batch system's warning on (cases/study.sh, study_warn):
+# SIGNAL (USR1, as SLURM's --signal=B:USR1@T sends it, or TERM) to
+# `cases/falling_block/run` while one of its runs is going reaches the run as SIGUSR1
+# (through mpirun at 2 ranks), which checkpoints and exits 75; the ledger row says
+# wall_limit with the t reached, the script exits 75, and --resume finishes the run
+# from that checkpoint (a second segment) with the ledger row finished.
+#   study_signal_test.sh VOIGT SOURCE_DIR RANKS SIGNAL
+set -u
+export VOIGT=$1
+SRC=$2
+NP=$3
+SIG=$4
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/voigt_study_XXXXXX")
+trap 'rm -rf "$WORK"' EXIT
+export VOIGT_LEDGER=$WORK/runs.csv
+RUN=(bash "$SRC/cases/falling_block/run" --quick -o "$WORK/out" --moduli 1000 --ranks "$NP" --no-figures
+     --set "domain.cells=[24,24,24]" --set output.interval=1)
+fail() {
+  echo "FAIL: $*"
+  tail -n 8 "$WORK"/*.log
+  cat "$VOIGT_LEDGER" 2> /dev/null
+  exit 1
+}
+ledger() { # ledger COLUMN: the one row's value
+  python3 -c "import csv,sys;print(list(csv.DictReader(open(sys.argv[1])))[0][sys.argv[2]])" "$VOIGT_LEDGER" "$1"
+}
+
+"${RUN[@]}" > "$WORK/first.log" 2>&1 &
+pid=$!
+# Signal once a run is stepping (its timeseries.csv has rows).
+for _ in $(seq 1 1200); do
+  rows=$(cat "$WORK"/out/*/timeseries.csv 2> /dev/null | wc -l)
+  [ "$rows" -ge 5 ] && break
+  sleep 0.05
+done
+[ "$rows" -ge 5 ] || fail "the run did not start stepping"
+kill -s "$SIG" "$pid"
+wait "$pid"
+rc=$?
+[ "$rc" = 75 ] || fail "the script exited with $rc after SIG$SIG, expected 75"
+grep -q "stopped by SIGUSR1" "$WORK/first.log" || fail "the run was not stopped by SIGUSR1"
+[ "$(ledger state)" = wall_limit ] || fail "ledger state '$(ledger state)', expected wall_limit"
+t1=$(ledger t_reached)
+python3 -c "import sys; sys.exit(not 0 < float(sys.argv[1]) < 0.13)" "$t1" || fail "t_reached $t1 not in (0, 0.13)"
+
+"${RUN[@]}" --resume > "$WORK/resume.log" 2>&1 || fail "--resume exited with $?"
+grep -q "restart: " "$WORK/resume.log" || fail "--resume did not restart from the checkpoint"
+[ "$(ledger state)" = finished ] || fail "ledger state after --resume '$(ledger state)'"
+echo "SIG$SIG to the study script (ranks $NP): the run stopped at t = $t1 with exit 75 (ledger wall_limit); --resume finished it"
+echo PASS
