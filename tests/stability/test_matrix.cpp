@@ -117,9 +117,11 @@ std::string solidScene(const char* name, Grid3 n, double lx, double ly, double l
 // Stiff solid: a block (0.4 x 0.3 x 0.4) of density 2000 falls 0.1 onto the floor
 // of a water-filled box, mu_S = 1e2, 1e4, 1e6 Pa (shear-wave speed 0.22, 2.2, 22
 // m/s) with the adaptive dt: dt must equal the elastic-wave limit cfl h / c
-// whenever it is the smallest (every step for mu_S >= 1e4: the flow is slower
-// than c here), and never exceed it (at 1e2 the advective and gravity limits
-// are the smaller ones).
+// whenever it is the smallest, and never exceed it: a step limited by another
+// rule has a dt below the elastic one. At mu_S >= 1e4 the flow is slower than c
+// and the elastic wave limits nearly every step (fast matrix: all 100; full
+// matrix at 1e4: 197 of 200, the other 3 advective at the impact, max speed
+// 0.94 m/s); at 1e2 the advective and gravity limits are the smaller ones.
 class StiffSolid : public ::testing::TestWithParam<double> {};
 TEST_P(StiffSolid, BlockFallsOntoFloor) {
   const double mu = GetParam();
@@ -136,8 +138,9 @@ TEST_P(StiffSolid, BlockFallsOntoFloor) {
   for (size_t k = 0; k < r.s.dt.size(); ++k) {
     EXPECT_LE(r.s.dt[k], dtElastic * (1 + 1e-12)) << "step " << k + 1;
     if (r.s.reason[k] == "elastic wave") EXPECT_NEAR(r.s.dt[k], dtElastic, 1e-12 * dtElastic);
+    else EXPECT_LT(r.s.dt[k], dtElastic) << "step " << k + 1 << " (" << r.s.reason[k] << ")";
   }
-  if (mu >= 1e4) EXPECT_EQ(r.reasons["elastic wave"], steps);
+  if (mu >= 1e4) EXPECT_GE(r.reasons["elastic wave"], steps * 9 / 10); // the flow is slower than c
   // Drift measured 0.34 / 0.044 / 0.022 (mu_S 1e2 / 1e4 / 1e6) + 25 %. At 1e2 Pa
   // the block's weight stress over its modulus is rho g H / mu_S = 59: it is a
   // very soft gel that slumps into a layer a cell or two thick on the floor,
