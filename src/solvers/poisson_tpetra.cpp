@@ -110,7 +110,7 @@ class TpetraPoisson final : public PoissonSolver {
         baseIts_ = -1;
         rebuildDue_ = false;
       } else {
-        reuseMultigrid();
+        MueLu::ReuseTpetraPreconditioner(A_, *muelu_);
         ++sinceBuild_;
       }
     }
@@ -193,24 +193,6 @@ class TpetraPoisson final : public PoissonSolver {
   int nullModeCount() const override { return ns_->dimension(); }
 
  private:
-  // MueLu::ReuseTpetraPreconditioner, but with RP and RAP reuse the fine level's Chebyshev
-  // smoother keeps the largest eigenvalue of D^-1 A that the last full build estimated
-  // (10 power iterations, repeated on every reuse otherwise). The densities move by less
-  // than a cell a step and a full build comes every multigrid_refresh updates; Ifpack2
-  // applies its boost factor (1.1) to the estimate either way. S and tP recompute it, so
-  // that an update stays bit-identical to a rebuild (and restarts to the run).
-  void reuseMultigrid() {
-    using XMatrix = Xpetra::Matrix<Scalar, LO, GO, Node>;
-    auto H = muelu_->GetHierarchy();
-    Teuchos::RCP<XMatrix> xA = MueLu::TpetraCrs_To_XpetraMatrix<Scalar, LO, GO, Node>(A_);
-    const bool keepsValues = cfg_.multigridReuse == "RP" || cfg_.multigridReuse == "RAP";
-    if (cfg_.multigridSmoother == "chebyshev" && keepsValues) {
-      const double lambda = H->GetLevel(0)->template Get<Teuchos::RCP<XMatrix>>("A")->GetMaxEigenvalueEstimate();
-      if (lambda > 0) xA->SetMaxEigenvalueEstimate(lambda);
-    }
-    MueLu::ReuseXpetraPreconditioner<Scalar, LO, GO, Node>(xA, H);
-  }
-
   // Global column of cell (gi,gj,gk) + offset, wrapped on periodic axes; -1 outside.
   GO column(const int gc0[3], int o) const {
     const int off[3] = {o % 3 - 1, (o / 3) % 3 - 1, o / 9 - 1};
