@@ -154,7 +154,7 @@ PRESETS = ["fast", "balanced", "accurate"]
 # writes, so the preset runs use a copy of the case's scene without them.
 PRESET_KEYS = [("time", "cfl"), ("advection", "limiter"), ("projection", "operator"),
                ("projection", "tolerance"), ("projection", "preconditioner"), ("reinit", "interval"),
-               ("reinit", "iterations")]
+               ("reinit", "iterations"), ("level_set", "smoothing")]
 
 
 def scene_without_preset_keys(scene, work):

@@ -1,13 +1,14 @@
 #pragma once
 // Scene presets: `preset: fast | balanced | accurate` picks default values for the
 // knobs that trade accuracy for time (CFL, limiter, projection operator, Poisson
-// tolerance and preconditioner, re-initialisation interval and iterations). The
+// tolerance and preconditioner, re-initialisation interval and iterations, the
+// level set's smoothing width). The
 // values come from the measured Pareto fronts in perf/accuracy/README.md.
 //
 // applyPreset() runs after the --set overrides and before any section is read: it
 // writes each preset value into the scene tree only where the key is absent, so a key
-// written in the scene (or by --set) always wins. Re-initialisation knobs are set only
-// when `reinit` is in the scene's effects.
+// written in the scene (or by --set) always wins. Re-initialisation and level-set knobs
+// are set only when `reinit` / `level_set` is in the scene's effects.
 #include <yaml-cpp/yaml.h>
 
 #include <string>
@@ -18,7 +19,7 @@
 namespace voigt {
 
 struct PresetKnob {
-  const char* section; // "time", "advection", "projection", "reinit"
+  const char* section; // "time", "advection", "projection", "reinit", "level_set"
   const char* key;
   const char* value;   // YAML scalar
 };

@@ -101,6 +101,23 @@ TEST(Presets, ReinitKnobsOnlyWithTheReinitEffect) {
   EXPECT_EQ(s.root["reinit"]["interval"].as<std::string>(), knob("fast", "reinit", "interval"));
 }
 
+// `accurate` narrows the level set's smoothing (kappa 1 cell); only where level_set runs,
+// and a scene's own smoothing (the paper scenes pin 2) wins.
+TEST(Presets, SmoothingOnlyWithTheLevelSet) {
+  const std::string ls = "name: z\n"
+                         "domain: {lo: [0, 0, 0], hi: [1, 1, 1], cells: [8, 8, 8]}\n"
+                         "effects: [prescribed_flow, level_set]\n"
+                         "level_set: {phase: a, shape: {type: sphere, center: [0.5, 0.5, 0.5], radius: 0.2}}\n";
+  Scene s = load(ls + "preset: accurate\n");
+  EXPECT_EQ(s.root["level_set"]["smoothing"].as<std::string>(), knob("accurate", "level_set", "smoothing"));
+  Scene kept = load(ls + "preset: accurate\n", options({"level_set.smoothing=2"}));
+  EXPECT_EQ(kept.root["level_set"]["smoothing"].as<double>(), 2.0);
+  Scene fast = load(ls + "preset: fast\n");
+  EXPECT_FALSE(fast.root["level_set"]["smoothing"].IsDefined()); // fast and balanced keep the default
+  Scene none = load(kBase + "preset: accurate\n");
+  EXPECT_FALSE(none.root["level_set"].IsDefined()); // no level set: no section written
+}
+
 TEST(Presets, UnknownPresetNamesFileLineAndKey) {
   try {
     load(kBase + "preset: fastest\n");
