@@ -8,7 +8,8 @@ falls"). Python 3 + numpy + h5py (Debian python3-*).
 FILE: a checkpoint (checkpoint_*.h5) or an output (fields_*.h5) of porous_bed.yaml, or of the
 rigid bed (rigid_bed.py), which has no psi: the distance to the packing's spheres stands in.
 Only the bed's interior counts (x, z 1.1-9.9 cm, inside the held wall layer; y 6-30 cm).
-Node values: velocity as stored; psi, density the mean of the 8 cells around the node; the
+Node values: velocity as stored; psi, density the mean of the 8 cells around the node (an output
+file has no density: it is blended from psi as the model does, gas 1, bed 10 kg/m^3); the
 pressure gradient the semi-staggered one (the mean of the 4 cell-pair differences across each
 axis). Arrays are stored (z, y, x).
 """
@@ -20,6 +21,7 @@ import h5py
 import numpy as np
 
 H = 0.11 / 50  # the paper's grid spacing (porous_bed.yaml)
+RHO_GAS, RHO_BED, KAPPA = 1.0, 10.0, 2.0  # porous_bed.yaml: densities, smoothing (cells)
 
 
 def read(f, name):
@@ -71,7 +73,11 @@ def main():
     speed = np.sqrt((u ** 2).sum(-1))
     dist = to_nodes(psi) if psi is not None else sphere_distance(speed.shape, H, a.packing)
     dist = dist / H
-    rho_n = to_nodes(rho) if rho is not None else np.ones(speed.shape)  # the rigid bed: gas only
+    if rho is None and psi is not None:  # an output file: the model's blend (Eq. 2, Eq. 4 H)
+        k = KAPPA * H
+        hs = np.where(psi < -k, 0.0, np.where(psi > k, 1.0, 0.5 * (1 + psi / k + np.sin(np.pi * psi / k) / np.pi)))
+        rho = RHO_GAS + (RHO_BED - RHO_GAS) * hs
+    rho_n = to_nodes(rho) if rho is not None else np.full(speed.shape, RHO_GAS)  # the rigid bed: gas only
     g = pressure_gradient(p, H)
     gmag = np.sqrt((g ** 2).sum(-1))
     z, y, x = np.meshgrid(*(np.arange(n) * H for n in speed.shape), indexing="ij")
