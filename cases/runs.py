@@ -8,6 +8,8 @@ each long run got is known even when the machine that ran it is gone. Used by ca
     runs.py start LEDGER RUN_ID MODULUS MODEL GRID RANKS   (the row says "running")
     runs.py end LEDGER RUN_ID DIR EXIT_CODE SINCE_EPOCH    (the row from DIR/summary.json)
     runs.py table LEDGER [RUN_ID ...]                -> Markdown
+    runs.py progress LEDGER OUT                      (each "running" row: step and t of its last
+                                                      checkpoint in OUT/<run id>, what a resume continues from)
 
 States: running, wall_limit (voigt exit 75), stopped (SIGINT/SIGTERM), finished, failed.
 Standard library only."""
@@ -117,6 +119,32 @@ def end(ledger, rid, path, code, since):
     update(ledger, rid, values)
 
 
+def checkpoint_reached(path):
+    """(step, t) of the checkpoint `latest` names, t from timeseries.csv; None if none."""
+    try:
+        with open(os.path.join(path, "latest")) as f:
+            step = int(re.search(r"(\d+)", f.read()).group(1))
+        with open(os.path.join(path, "timeseries.csv"), newline="") as f:
+            t = next((r["t"] for r in csv.DictReader(f) if r.get("step") == str(step)), None)
+    except (OSError, AttributeError, ValueError):
+        return None
+    return None if t is None else (step, float(t))
+
+
+def progress(ledger, out):
+    """Records how far each running run has a checkpoint, so that a ledger committed while it
+    runs says what a later job can continue from. Returns the run ids updated."""
+    with open(ledger, newline="") as f:
+        ids = [r["run_id"] for r in csv.DictReader(f) if r.get("state") == "running"]
+    done = []
+    for rid in ids:
+        got = checkpoint_reached(os.path.join(out, rid))
+        if got is not None:
+            update(ledger, rid, {"steps": str(got[0]), "t_reached": "%.6g" % got[1]})
+            done.append(rid)
+    return done
+
+
 def recorded(ledger, rid):
     """The ledger's word on a run: what a fresh machine (no outputs) knows of it."""
     if not os.path.exists(ledger):
@@ -155,6 +183,9 @@ def main(argv):
         end(args[0], args[1], args[2], int(args[3]), float(args[4]))
     elif cmd == "table":
         print(table(args[0], set(args[1:])))
+    elif cmd == "progress":
+        for rid in progress(args[0], args[1]):
+            print("runs.py: %s: last checkpoint recorded" % rid)
     else:
         sys.exit("runs.py: unknown command '%s'" % cmd)
 

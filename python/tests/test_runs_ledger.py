@@ -44,6 +44,23 @@ class Ledger(unittest.TestCase):
             json.dump({"state": "blow_up"}, f)
         self.assertEqual(runs.state(d), "failed")
 
+    def test_progress_records_the_last_checkpoint_of_running_rows(self):
+        out = os.path.join(self.dir.name, "out")
+        os.makedirs(os.path.join(out, "a"))
+        with open(os.path.join(out, "a", "timeseries.csv"), "w") as f:
+            f.write("step,t,dt\n1,0.1,0.1\n2,0.2,0.1\n3,0.3,0.1\n")
+        with open(os.path.join(out, "a", "latest"), "w") as f:
+            f.write("checkpoint_000000002.h5\n")  # step 3 has no checkpoint yet
+        runs.update(self.ledger, "a", {"state": "running"})
+        runs.update(self.ledger, "b", {"state": "running"})  # no output here: left alone
+        runs.update(self.ledger, "c", {"state": "finished", "steps": "9"})
+        self.assertEqual(runs.progress(self.ledger, out), ["a"])
+        with open(self.ledger) as f:
+            rows = {r["run_id"]: r for r in runs.csv.DictReader(f)}
+        self.assertEqual((rows["a"]["steps"], rows["a"]["t_reached"], rows["a"]["state"]), ("2", "0.2", "running"))
+        self.assertEqual(rows["b"]["steps"], "")
+        self.assertEqual(rows["c"]["steps"], "9")
+
     def test_durations(self):
         for text, s in [("3h", 10800), ("170m", 10200), ("3600s", 3600), ("02:50:00", 10200)]:
             self.assertAlmostEqual(runs.seconds(text), s)
