@@ -47,6 +47,8 @@ struct SignalGuard {
     sa.sa_flags = SA_RESTART | SA_RESETHAND; // a second Ctrl-C kills at once
     sigaction(SIGINT, &sa, &oldInt);
     sigaction(SIGTERM, &sa, &oldTerm);
+    // A warning may come twice (to the script and to the run): a second one must not kill.
+    sa.sa_flags = SA_RESTART;
     sigaction(SIGUSR1, &sa, &oldUsr1);
   }
   ~SignalGuard() {
