@@ -57,6 +57,9 @@ for sig in INT TERM USR1; do
   fi
   [ -n "$target" ] || fail "SIG$sig: no process to signal"
   kill -s "$sig" "$target"
+  # A warning may arrive twice (to the study script, which passes it on, and to the run):
+  # the second must not kill the run before its checkpoint.
+  if [ "$sig" = USR1 ]; then kill -s USR1 "$target" 2> /dev/null || true; fi
   wait $PID
   rc=$?
   want=$((128 + $(kill -l "$sig")))
