@@ -63,10 +63,24 @@ study_one() {
   echo "== $id -> $dir (${ranks} rank(s), $2)"
   "$py" "$runs" start "$ledger" "$id" "${meta[@]}" "$ranks"
   since=$(date +%s)
-  # In the background, so that study_warn can pass a signal on while it runs.
+  # In the background, so that study_warn can pass a signal on while it runs; meanwhile the
+  # ledger row gets the run's last checkpoint every 10 min (runs.py progress), so the ledger
+  # says how far a long run got even if the job is killed without warning.
   "${launch[@]}" "$voigt" run "$study_scene" -o "$dir" "${extra[@]}" "${args[@]}" &
   study_child=$!
+  (
+    trap 'kill "$nap" 2> /dev/null; exit 0' TERM
+    while :; do
+      sleep "${VOIGT_LEDGER_INTERVAL:-600}" &
+      nap=$!
+      wait "$nap"
+      "$py" "$runs" progress "$ledger" "$out" || true
+    done
+  ) > /dev/null 2>&1 &
+  local ticker=$!
   study_wait
+  kill "$ticker" 2> /dev/null || true
+  wait "$ticker" 2> /dev/null || true
   "$py" "$runs" end "$ledger" "$id" "$dir" "$rc" "$since"
 }
 

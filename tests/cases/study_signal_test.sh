@@ -4,7 +4,8 @@
 # `cases/falling_block/run` while one of its runs is going reaches the run as SIGUSR1
 # (through mpirun at 2 ranks), which checkpoints and exits 75; the ledger row says
 # wall_limit with the t reached, the script exits 75, and --resume finishes the run
-# from that checkpoint (a second segment) with the ledger row finished.
+# from that checkpoint (a second segment) with the ledger row finished. While the run goes,
+# the ledger row follows its checkpoints (VOIGT_LEDGER_INTERVAL=1 s here).
 #   study_signal_test.sh VOIGT SOURCE_DIR RANKS SIGNAL
 set -u
 export VOIGT=$1
@@ -14,8 +15,9 @@ SIG=$4
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/voigt_study_XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
 export VOIGT_LEDGER=$WORK/runs.csv
+export VOIGT_LEDGER_INTERVAL=1 # the ledger row follows the run's checkpoints every second
 RUN=(bash "$SRC/cases/falling_block/run" --quick -o "$WORK/out" --moduli 1000 --ranks "$NP" --no-figures
-     --set "domain.cells=[24,24,24]" --set output.interval=1)
+     --set "domain.cells=[24,24,24]" --set output.interval=1 --set checkpoint.interval=5)
 fail() {
   echo "FAIL: $*"
   tail -n 8 "$WORK"/*.log
@@ -35,6 +37,13 @@ for _ in $(seq 1 1200); do
   sleep 0.05
 done
 [ "$rows" -ge 5 ] || fail "the run did not start stepping"
+# While it runs, the ledger row gets its last checkpoint (runs.py progress).
+for _ in $(seq 1 100); do
+  [ "$(ledger state)" = running ] && [ -n "$(ledger steps)" ] && break
+  sleep 0.05
+done
+[ -n "$(ledger steps)" ] || fail "the running row was not given its last checkpoint"
+running_steps=$(ledger steps)
 kill -s "$SIG" "$pid"
 wait "$pid"
 rc=$?
@@ -47,5 +56,5 @@ python3 -c "import sys; sys.exit(not 0 < float(sys.argv[1]) < 0.13)" "$t1" || fa
 "${RUN[@]}" --resume > "$WORK/resume.log" 2>&1 || fail "--resume exited with $?"
 grep -q "restart: " "$WORK/resume.log" || fail "--resume did not restart from the checkpoint"
 [ "$(ledger state)" = finished ] || fail "ledger state after --resume '$(ledger state)'"
-echo "SIG$SIG to the study script (ranks $NP): the run stopped at t = $t1 with exit 75 (ledger wall_limit); --resume finished it"
+echo "while running the ledger had step $running_steps; SIG$SIG to the study script (ranks $NP): the run stopped at t = $t1 with exit 75 (ledger wall_limit); --resume finished it"
 echo PASS
