@@ -60,6 +60,15 @@ study_one() {
     if [ "$limit" -lt 60 ]; then echo "== $id: not started, $limit s left of --wall-limit"; rc=75; return; fi
     extra+=(--wall-limit "${limit}s")
   fi
+  # One writer per run: another job (a second script with --resume on the same DIR) that
+  # holds the run's lock makes this one skip it (rc 0: not a failure).
+  exec {study_lock}> "$dir.lock"
+  if ! flock -n "$study_lock"; then
+    echo "== $id: another job is running it (lock $dir.lock), skipped"
+    exec {study_lock}>&-
+    rc=0
+    return
+  fi
   echo "== $id -> $dir (${ranks} rank(s), $2)"
   "$py" "$runs" start "$ledger" "$id" "${meta[@]}" "$ranks"
   since=$(date +%s)
@@ -82,6 +91,7 @@ study_one() {
   kill "$ticker" 2> /dev/null || true
   wait "$ticker" 2> /dev/null || true
   "$py" "$runs" end "$ledger" "$id" "$dir" "$rc" "$since"
+  exec {study_lock}>&-
 }
 
 # SIGUSR1 / SIGTERM / SIGINT to this script (a batch system's warning before its
