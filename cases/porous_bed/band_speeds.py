@@ -17,8 +17,13 @@ import argparse
 import csv
 import os
 
+import sys
+
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
+from voigt_post import formulas  # noqa: E402
 
 H = 0.11 / 50  # the paper's grid spacing (porous_bed.yaml)
 RHO_GAS, RHO_BED, KAPPA = 1.0, 10.0, 2.0  # porous_bed.yaml: densities, smoothing (cells)
@@ -74,9 +79,7 @@ def main():
     dist = to_nodes(psi) if psi is not None else sphere_distance(speed.shape, H, a.packing)
     dist = dist / H
     if rho is None and psi is not None:  # an output file: the model's blend (Eq. 2, Eq. 4 H)
-        k = KAPPA * H
-        hs = np.where(psi < -k, 0.0, np.where(psi > k, 1.0, 0.5 * (1 + psi / k + np.sin(np.pi * psi / k) / np.pi)))
-        rho = RHO_GAS + (RHO_BED - RHO_GAS) * hs
+        rho = RHO_GAS + (RHO_BED - RHO_GAS) * formulas.heaviside(psi, KAPPA * H)
     rho_n = to_nodes(rho) if rho is not None else np.full(speed.shape, RHO_GAS)  # the rigid bed: gas only
     g = pressure_gradient(p, H)
     gmag = np.sqrt((g ** 2).sum(-1))
