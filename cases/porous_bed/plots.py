@@ -12,7 +12,8 @@ at the first, middle and last output, and the bed centroid's rise against time),
 markdown table. The midline is the probe `midline` (probe_midline.csv) at its last time, or with
 --time T the pressure field of the last output at or before T (mean of the four cell columns
 around x = z = 5.5 cm; cell centres), so runs can be compared at an earlier common time; Figs. 7-8
-then stop at that output too.
+then stop at that output too. With --csv FILE, one row per finished run (results_row) is merged
+into FILE by run id (issue 22's results.csv; runs not finished and --time are left out).
 """
 import argparse
 import json
@@ -59,12 +60,40 @@ def timeseries(d):
     return np.array(cols["t"]), np.array(cols["solid_cy"])
 
 
+def results_row(d, t, mean, rise):
+    """Issue 22's porous-bed table: one finished run (its directory and summary.json)."""
+    summ = series.summary(d)
+    el, ls = summ.get("elasticity", {}), summ.get("level_set", {})
+    return {
+        "run_id": os.path.basename(os.path.normpath(d)),
+        "mu_S": "%g" % el.get("shear_modulus"),
+        "model": el.get("fluid_side", ""),
+        "volume_correction": ls.get("volume_correction", "none"),
+        "grid": "x".join(str(n) for n in summ["grid"]["cells"]),
+        "ranks": summ["grid"]["ranks"],
+        "t_end": "%.4f" % summ["simulated_time"],
+        "steps": summ["steps"],
+        "wall_s": "%.0f" % summ["wall_seconds_total"],
+        "midline_t": "%.4f" % t,
+        "mean_gradient": "%.1f" % mean,
+        "centroid_rise_mm": "%.2f" % rise,
+    }
+
+
+def merge_csv(path, new):
+    """Rows of PATH with the same run_id as a new row are replaced; the rest are kept, in order."""
+    old = series.read_csv(path) if os.path.exists(path) else []
+    ids = {r["run_id"] for r in new}
+    series.write_csv(path, [r for r in old if r["run_id"] not in ids] + new)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "MU_S"), required=True)
     ap.add_argument("--title", default="")
     ap.add_argument("--time", type=float, help="midline from the last field output at or before this time")
     ap.add_argument("-o", "--outdir", required=True)
+    ap.add_argument("--csv", help="merge one row per finished run into this CSV (results.csv)")
     a = ap.parse_args()
     runs = sorted(((float(m), d) for d, m in a.run))
     os.makedirs(a.outdir, exist_ok=True)
@@ -72,7 +101,7 @@ def main():
     pk = json.load(open(os.path.join(HERE, "packing.json")))["voidage_written"]
     f4, ax4 = plt.subplots(figsize=(6, 4.5))
     f5, ax5 = plt.subplots(figsize=(6, 4.5))
-    mus, grads, rows = [], [], []
+    mus, grads, rows, results = [], [], [], []
     for n, (mu, d) in enumerate(runs):
         t, y, p = midline(d, a.time)
         gr = -np.gradient(p, y)
@@ -87,6 +116,8 @@ def main():
         grads.append(mean)
         k = int(np.argmin(np.abs(tt - t)))      # centroid rise at the midline's time
         rows.append((mu, t, mean, mean - RHO * G, 1000 * (cy[k] - cy[0])))
+        if a.csv and a.time is None and series.summary(d, {}).get("state") == "finished":
+            results.append(results_row(d, t, mean, rows[-1][-1]))
     for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),
                              (ax5, f5, "-dp/dy (Pa/m); dashed: mean over 0.10-0.25 m", "gradient_midline.png")):
         ax.set_xlabel("y (m), midline x = z = 5.5 cm")
@@ -158,6 +189,9 @@ def main():
     print("|---|---|---|---|---|")
     for r in rows:
         print("| %g | %.3g | %.1f | %.1f | %.2f |" % r)
+    if a.csv:
+        merge_csv(a.csv, results)
+        print("plots.py: %d finished run(s) merged into %s" % (len(results), a.csv))
     if fit:
         print("\nlinear fit: slope %.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.4f" % fit)
     print("Ergun (Eq. 23): e = %.3f -> %.1f Pa/m; e = %.3f -> %.1f Pa/m" % (

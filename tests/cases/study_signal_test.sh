@@ -5,7 +5,8 @@
 # (through mpirun at 2 ranks), which checkpoints and exits 75; the ledger row says
 # wall_limit with the t reached, the script exits 75, and --resume finishes the run
 # from that checkpoint (a second segment) with the ledger row finished. While the run goes,
-# the ledger row follows its checkpoints (VOIGT_LEDGER_INTERVAL=1 s here).
+# the ledger row follows its checkpoints (VOIGT_LEDGER_INTERVAL=1 s here), and a second
+# --resume script on the same DIR skips the run the first one holds.
 #   study_signal_test.sh VOIGT SOURCE_DIR RANKS SIGNAL
 set -u
 export VOIGT=$1
@@ -44,6 +45,13 @@ for _ in $(seq 1 100); do
 done
 [ -n "$(ledger steps)" ] || fail "the running row was not given its last checkpoint"
 running_steps=$(ledger steps)
+# One writer per run: a second script on the same DIR (a second --resume job) skips the run
+# the first holds (its lock, DIR/<run id>.lock) and leaves it going.
+"${RUN[@]}" --resume > "$WORK/second.log" 2>&1 || fail "a second --resume exited with $? while the first ran"
+grep -q "another job is running it" "$WORK/second.log" || fail "the second script did not skip the held run"
+grep -q "^== .*->" "$WORK/second.log" && fail "the second script started the held run"
+kill -0 "$pid" 2> /dev/null || fail "the first script ended while the second ran"
+[ "$(ledger state)" = running ] || fail "ledger state '$(ledger state)' after the second script, expected running"
 kill -s "$SIG" "$pid"
 wait "$pid"
 rc=$?
@@ -56,5 +64,5 @@ python3 -c "import sys; sys.exit(not 0 < float(sys.argv[1]) < 0.13)" "$t1" || fa
 "${RUN[@]}" --resume > "$WORK/resume.log" 2>&1 || fail "--resume exited with $?"
 grep -q "restart: " "$WORK/resume.log" || fail "--resume did not restart from the checkpoint"
 [ "$(ledger state)" = finished ] || fail "ledger state after --resume '$(ledger state)'"
-echo "while running the ledger had step $running_steps; SIG$SIG to the study script (ranks $NP): the run stopped at t = $t1 with exit 75 (ledger wall_limit); --resume finished it"
+echo "while running the ledger had step $running_steps and a second script skipped the run; SIG$SIG to the study script (ranks $NP): the run stopped at t = $t1 with exit 75 (ledger wall_limit); --resume finished it"
 echo PASS
