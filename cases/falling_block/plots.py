@@ -52,7 +52,7 @@ def main():
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "LABEL"), required=True)
     ap.add_argument("--title", default="")
     ap.add_argument("-o", "--output", required=True)
-    ap.add_argument("--csv", help="also write one row per finished run (results_row) to this CSV")
+    ap.add_argument("--csv", help="also merge one row per finished run (results_row) into this CSV by run id")
     a = ap.parse_args()
     fig, ax = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     ax = ax.ravel()
@@ -119,9 +119,9 @@ def main():
     for label, srows in states:
         for r in srows:
             print("| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f |" % ((label,) + r))
-    if a.csv:
-        series.write_csv(a.csv, results)
-        print("plots.py: %d finished run(s) in %s" % (len(results), a.csv))
+    if a.csv:  # rows of other runs (outputs no longer here) are kept; a run's new row replaces its old
+        series.merge_csv(a.csv, results)
+        print("plots.py: %d finished run(s) merged into %s" % (len(results), a.csv))
     if evs:
         print()
         print("| event | " + " | ".join(label for label, _ in evs) + " |")
@@ -223,7 +223,26 @@ def results_row(d, cols, summ):
         # The smoothed volume (what the global correction holds) and the sharp one (psi > 0).
         "volume_change_pct": fmt(100 * cols["volume_drift"][-1], "%.2f"),
         "sharp_volume_change_pct": fmt(100 * (ls["sharp_volume"] / sharp0 - 1) if sharp0 else None, "%.2f"),
+        "free_fall_elastic_over_kinetic": fmt(free_fall_elastic(cols, summ), "%.2e"),
     }
+
+
+def free_fall_elastic(cols, summ):
+    """Issue 21's "no elastic energy before contact": the largest elastic / kinetic energy while
+    the block's smoothing band (kappa h outside psi = 0, Eq. 4) is clear of the cylinder and the
+    base, i.e. before anything but air can load it."""
+    sb, ls = summ.get("solid_body", {}), summ.get("level_set", {})
+    if not sb.get("contact_gap") or not ls.get("smoothing_cells"):
+        return None
+    band = ls["smoothing_cells"] * sb["contact_gap"] / sb.get("contact_gap_cells", 1.0)
+    worst = None
+    for e, k, g0, g1 in zip(cols["elastic_energy"], cols["kinetic_energy"], cols["solid_gap_obstacle0"],
+                            cols["solid_gap_y-"]):
+        if min(g0, g1) <= band:
+            break
+        if k > 0:
+            worst = max(worst or 0.0, e / k)
+    return worst
 
 
 def events(cols, h):

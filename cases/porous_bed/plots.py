@@ -80,13 +80,6 @@ def results_row(d, t, mean, rise):
     }
 
 
-def merge_csv(path, new):
-    """Rows of PATH with the same run_id as a new row are replaced; the rest are kept, in order."""
-    old = series.read_csv(path) if os.path.exists(path) else []
-    ids = {r["run_id"] for r in new}
-    series.write_csv(path, [r for r in old if r["run_id"] not in ids] + new)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "MU_S"), required=True)
@@ -190,7 +183,7 @@ def main():
     for r in rows:
         print("| %g | %.3g | %.1f | %.1f | %.2f |" % r)
     if a.csv:
-        merge_csv(a.csv, results)
+        series.merge_csv(a.csv, results)
         print("plots.py: %d finished run(s) merged into %s" % (len(results), a.csv))
     if fit:
         print("\nlinear fit: slope %.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.4f" % fit)

@@ -71,6 +71,15 @@ class SeriesTest(RunFixture):
         series.write_csv(path, [{"a": 1, "b": 2}, {"a": 3, "c": "x"}])    # columns as first seen
         self.assertEqual(series.read_csv(path), [{"a": "1", "b": "2", "c": ""}, {"a": "3", "b": "", "c": "x"}])
 
+    def test_merge_csv(self):
+        # results.csv: a rerun's row replaces its old one in place, rows of runs whose outputs
+        # are gone stay, new runs and new columns go last.
+        path = os.path.join(tempfile.mkdtemp(dir=self.tmp), "r.csv")
+        series.merge_csv(path, [{"run_id": "a", "x": 1}, {"run_id": "b", "x": 2}])
+        series.merge_csv(path, [{"run_id": "c", "x": 5, "y": 7}, {"run_id": "a", "x": 3, "y": 4}])
+        self.assertEqual(series.read_csv(path), [{"run_id": "a", "x": "3", "y": "4"}, {"run_id": "b", "x": "2", "y": ""},
+                                                 {"run_id": "c", "x": "5", "y": "7"}])
+
 
 @unittest.skipIf(np is None, "needs numpy")
 class FieldsTest(RunFixture):
