@@ -150,16 +150,40 @@ TEST(Transport, FilamentT8) {
   EXPECT_LT(c.half.sharpChange, 1.25 * 1.35);
 }
 
-// The README's T = 8 numbers at 128^2 and 256^2 (VOIGT_LONG=1 only).
+// The README's T = 8 numbers at 128^2 (VOIGT_LONG=1 only; ~3 min, 1 rank).
+// Measured (Release, 1 rank; cases/single_vortex/README.md), area at T/2 and T:
+// global + constraint -0.5 %, +0.26 % (E/h 0.34, 2.68); constraint alone +50 %,
+// +63 % (E/h 0.71, 6.14). Issue 21's bound: area within 5 % at T; the shape error
+// at least 1.5x below the constraint alone's (2.1x and 2.3x measured).
 TEST(Transport, SingleVortexT8Long) {
   if (!longRuns()) GTEST_SKIP() << "set VOIGT_LONG=1";
   const double T = 8;
   const Poly half = traceCircle(0.5 * T, T, 40000, 4000);
   if (rank0()) std::printf("exact interface at T/2 (T = 8): length %.5f\n", half.length());
-  for (Mode m : {Mode::Constrained, Mode::Unconstrained, Mode::NoReinit, Mode::GlobalConstrained,
-                 Mode::GlobalUnconstrained})
-    runVortex(128, T, m, half);
-  for (Mode m : {Mode::GlobalConstrained, Mode::Constrained}) runVortex(256, T, m, half);
+  for (Mode m : {Mode::Unconstrained, Mode::NoReinit, Mode::GlobalUnconstrained}) runVortex(128, T, m, half);
+  const VortexResult c = runVortex(128, T, Mode::Constrained, half);
+  const VortexResult g = runVortex(128, T, Mode::GlobalConstrained, half);
+  EXPECT_LT(std::abs(g.end.sharpChange), 0.05);
+  EXPECT_LT(std::abs(g.half.sharpChange), 0.05);
+  EXPECT_LT(g.half.shapeError, c.half.shapeError / 1.5);
+  EXPECT_LT(g.end.shapeError, c.end.shapeError / 1.5);
+}
+
+// 256^2 (VOIGT_LONG=1 only; ~6 min, 1 rank): T = 8 and T = 2 with the global
+// correction (the constraint alone at 256^2: `single_vortex.yaml` with
+// `--set level_set.volume_correction=none`). Measured at T = 8: global + constraint -0.15 %,
+// -0.04 % (E/h 0.39, 3.34). The 5 % bound as at 128^2; at T = 2 the area within
+// 1 % (-0.34 % at 128^2) and E/h below 128^2's 0.149 (the error falls with h).
+TEST(Transport, SingleVortexLong256) {
+  if (!longRuns()) GTEST_SKIP() << "set VOIGT_LONG=1";
+  const Poly half8 = traceCircle(4.0, 8.0, 40000, 4000);
+  const VortexResult g = runVortex(256, 8.0, Mode::GlobalConstrained, half8);
+  EXPECT_LT(std::abs(g.end.sharpChange), 0.05);
+  EXPECT_LT(std::abs(g.half.sharpChange), 0.05);
+  const Poly half2 = traceCircle(1.0, 2.0, 8000, 2000);
+  const VortexResult g2 = runVortex(256, 2.0, Mode::GlobalConstrained, half2);
+  EXPECT_LT(std::abs(g2.end.sharpChange), 0.01);
+  EXPECT_LT(g2.end.shapeError / g2.h, 0.149);
 }
 
 // The decomposition does not matter: the constrained vortex at 32^2 on rank 0
@@ -199,6 +223,7 @@ TEST(Transport, RankIndependent) {
 // them, the shift takes the gained volume back from the whole interface).
 TEST(Transport, GlobalVolumeCorrection) {
   const ZalesakResult z = runZalesak(128, Mode::GlobalConstrained);
+  const ZalesakResult z64 = runZalesak(64, Mode::GlobalConstrained);
   const Poly half2 = traceCircle(1.0, 2.0, 4000, 1000);
   const VortexResult v2 = runVortex(128, 2.0, Mode::GlobalConstrained, half2);
   const Poly half8 = traceCircle(4.0, 8.0, 8000, 2000);
@@ -213,6 +238,8 @@ TEST(Transport, GlobalVolumeCorrection) {
   // README tables and the bounds of the tests above).
   EXPECT_LT(z.end.shapeError, 1.1 * 0.293);
   EXPECT_LT(std::abs(z.end.sharpChange), 0.0279); // the constraint alone: -2.79 %
+  EXPECT_LT(z64.end.shapeError, 1.1 * 1.443);     // 64^2, the constraint alone: E = 1.443
+  EXPECT_LT(std::abs(z64.end.hChange), 1e-8);
   EXPECT_LT(v2.end.shapeError / v2.h, 1.1 * 0.15);
   // T = 8 (issue 21: area within 5 % at t = T): +1.8 % measured at 64^2.
   EXPECT_LT(std::abs(g8.end.sharpChange), 0.05);
