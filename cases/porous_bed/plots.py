@@ -4,6 +4,7 @@ plus the Ergun prediction (paper Eq. 23) for the packing's measured voidage (pac
 Python 3 + numpy + matplotlib + h5py (Debian python3-*).
 
     cases/porous_bed/plots.py -o DIR --run output/pb/mu_100 100 --run output/pb/mu_1000 1000 [--title T]
+        [--time T] [--csv results.csv] [--rigid RIGID_RUN]
 
 Writes DIR/pressure_midline.png (Fig. 4), gradient_midline.png (Fig. 5), gradient_vs_modulus.png
 (Fig. 6: mean -dp/dy over y = 0.10-0.25 m, linear fit, slope, intercept, R^2), pressure_slice.png
@@ -87,6 +88,8 @@ def main():
     ap.add_argument("--time", type=float, help="midline from the last field output at or before this time")
     ap.add_argument("-o", "--outdir", required=True)
     ap.add_argument("--csv", help="merge one row per finished run into this CSV (results.csv)")
+    ap.add_argument("--rigid", metavar="DIR", help="a run of rigid_bed.py's scene (the very stiff limit): its mean "
+                    "gradient is drawn in Fig. 6 and printed beside Ergun's")
     a = ap.parse_args()
     runs = sorted(((float(m), d) for d, m in a.run))
     os.makedirs(a.outdir, exist_ok=True)
@@ -139,6 +142,12 @@ def main():
         ax6.axhline(ergun(e), ls=":", color="C3" if "full" in lab else "C2",
                     label="Ergun, e = %.3f (%s): %.1f Pa/m" % (e, lab, ergun(e)))
     ax6.axhline(RHO * G, ls="--", color="0.5", label="gas hydrostatic rho g = 9.81 Pa/m")
+    rigid = None
+    if a.rigid:  # same measure (midline, y = 0.10-0.25 m) on the bed of fixed spheres
+        t_r, y_r, p_r = midline(a.rigid, a.time)
+        gr_r = -np.gradient(p_r, y_r)
+        rigid = (t_r, float(np.mean(gr_r[(y_r >= Y0) & (y_r <= Y1)])))
+        ax6.axhline(rigid[1], ls="-.", color="C4", label="rigid bed (fixed spheres), t = %.3g s: %.1f Pa/m" % rigid)
     ax6.set_xlabel("mu_S (Pa)")
     ax6.set_ylabel("mean -dp/dy over y = 0.10-0.25 m (Pa/m)")
     ax6.set_title("Fig. 6: gradient against shear modulus" + sfx, fontsize=9)
@@ -187,6 +196,9 @@ def main():
         print("plots.py: %d finished run(s) merged into %s" % (len(results), a.csv))
     if fit:
         print("\nlinear fit: slope %.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.4f" % fit)
+    if rigid:
+        print("rigid bed (rigid_bed.py, fixed spheres) at t = %.3g s: mean -dp/dy %.1f Pa/m, minus rho g %.1f Pa/m" % (
+            rigid + (rigid[1] - RHO * G,)))
     print("Ergun (Eq. 23): e = %.3f -> %.1f Pa/m; e = %.3f -> %.1f Pa/m" % (
         pk["interior"], ergun(pk["interior"]), pk["interior_flow_region"], ergun(pk["interior_flow_region"])))
 

@@ -97,6 +97,8 @@ def merge_csv(path, rows, key="run_id"):
     """Rows (dicts) into the CSV at PATH: a row whose KEY is already there replaces that row in
     place, the others are appended; rows of PATH the new ones do not name are kept (e.g. runs
     whose outputs are no longer on this machine). New columns go last, blank in old rows."""
+    if not rows:
+        return
     old = read_csv(path) if os.path.exists(path) else []
     new = {r[key]: r for r in rows}
     merged = [new.pop(r[key], r) for r in old]
