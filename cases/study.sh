@@ -69,6 +69,14 @@ study_one() {
     rc=0
     return
   fi
+  # The list this job works through was made when it started: another job may have finished
+  # the run since (two --resume jobs both list every unfinished run).
+  if [ "$("$py" "$runs" state "$dir")" = finished ]; then
+    echo "== $id: finished by another job since this one started, skipped"
+    exec {study_lock}>&-
+    rc=0
+    return
+  fi
   echo "== $id -> $dir (${ranks} rank(s), $2)"
   "$py" "$runs" start "$ledger" "$id" "${meta[@]}" "$ranks"
   since=$(date +%s)

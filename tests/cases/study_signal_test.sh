@@ -6,7 +6,8 @@
 # wall_limit with the t reached, the script exits 75, and --resume finishes the run
 # from that checkpoint (a second segment) with the ledger row finished. While the run goes,
 # the ledger row follows its checkpoints (VOIGT_LEDGER_INTERVAL=1 s here), and a second
-# --resume script on the same DIR skips the run the first one holds.
+# --resume script on the same DIR skips the run the first one holds, and a job that reaches a
+# run another job has finished since its list was made skips it.
 #   study_signal_test.sh VOIGT SOURCE_DIR RANKS SIGNAL
 set -u
 export VOIGT=$1
@@ -64,5 +65,17 @@ python3 -c "import sys; sys.exit(not 0 < float(sys.argv[1]) < 0.13)" "$t1" || fa
 "${RUN[@]}" --resume > "$WORK/resume.log" 2>&1 || fail "--resume exited with $?"
 grep -q "restart: " "$WORK/resume.log" || fail "--resume did not restart from the checkpoint"
 [ "$(ledger state)" = finished ] || fail "ledger state after --resume '$(ledger state)'"
+# A job whose list was made before another job finished a run (two --resume jobs both list
+# every unfinished run) skips it when its turn comes, instead of restarting it.
+run_dir=$(dirname "$(ls "$WORK"/out/*/summary.json)")
+before=$(md5sum < "$run_dir/summary.json")
+bash -c 'set -euo pipefail; . "$1/cases/study.sh"; out=$(dirname "$2"); py=python3; runs=$1/cases/runs.py
+         ledger=$VOIGT_LEDGER; deadline=""; ranks=1; launch=(); voigt=$VOIGT
+         study_scene=$1/cases/falling_block/falling_block.yaml; study_one "$(basename "$2")" restart
+         echo "rc=$rc"' _ "$SRC" "$run_dir" > "$WORK/late.log" 2>&1 || fail "study_one on a finished run exited with $?"
+grep -q "finished by another job" "$WORK/late.log" || fail "a finished run on a job's list was not skipped"
+grep -q "^rc=0" "$WORK/late.log" || fail "skipping a finished run is not rc 0"
+[ "$(md5sum < "$run_dir/summary.json")" = "$before" ] || fail "the finished run's summary.json changed"
+[ "$(ledger state)" = finished ] || fail "ledger state '$(ledger state)' after the late job"
 echo "while running the ledger had step $running_steps and a second script skipped the run; SIG$SIG to the study script (ranks $NP): the run stopped at t = $t1 with exit 75 (ledger wall_limit); --resume finished it"
 echo PASS
