@@ -12,6 +12,8 @@ each long run got is known even when the machine that ran it is gone. Used by ca
                                                       checkpoint in OUT/<run id>, what a resume continues from)
 
 States: running, wall_limit (voigt exit 75), stopped (SIGINT/SIGTERM), finished, failed.
+to_finish_s: for a run that stopped before its end, the wall seconds its last segment's pace
+(seconds per step, mean dt of its last 100 steps) needs to reach the end time (issue 22 item 5).
 Standard library only."""
 import csv
 import datetime
@@ -23,7 +25,8 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))  # voigt_post
 from voigt_post import series  # noqa: E402
 
-COLUMNS = ["run_id", "modulus", "model", "grid", "ranks", "t_reached", "steps", "wall_s", "state", "updated_utc"]
+COLUMNS = ["run_id", "modulus", "model", "grid", "ranks", "t_reached", "steps", "wall_s", "state", "to_finish_s",
+           "updated_utc"]
 EXIT_STATE = {0: "finished", 75: "wall_limit", 130: "stopped", 143: "stopped"}
 
 
@@ -108,6 +111,35 @@ def update(ledger, rid, values):
         w.writerows(rows)
 
 
+def end_time(s):
+    """The time the run runs to: summary.json's end_time, else (summaries from before
+    2026-12-04) time.end of the scene file it names, in block style or flow style."""
+    if "end_time" in s:
+        return float(s["end_time"])
+    try:
+        with open(s.get("scene", "")) as f:
+            text = f.read()
+    except OSError:
+        return None
+    m = re.search(r"^time:\s*(?:\{[^}]*?\bend:\s*|\n(?:[ \t]+.*\n)*?[ \t]+end:\s*)([-+0-9.eE]+)", text, re.M)
+    return float(m.group(1)) if m else None
+
+
+def to_finish(path, s):
+    """Wall seconds left to end_time at this segment's pace: the mean dt of its last 100 steps
+    and its wall seconds per step (same ranks and load; dt may still shrink). None if unknown."""
+    t_end, n, wall = end_time(s), s.get("steps_this_run"), s.get("wall_seconds")
+    if t_end is None or not n or not wall:
+        return None
+    try:
+        dts = [float(x) for x in series.timeseries(path).get("dt", [])[-100:]]
+    except (OSError, ValueError):
+        return None
+    if not dts or min(dts) <= 0:
+        return None
+    return max(0.0, t_end - s["simulated_time"]) / (sum(dts) / len(dts)) * wall / n
+
+
 def end(ledger, rid, path, code, since):
     values = {"state": EXIT_STATE.get(code, "failed")}
     s = summary(path)
@@ -116,6 +148,8 @@ def end(ledger, rid, path, code, since):
         wall = s.get("wall_seconds_total")
         values.update(t_reached="%.6g" % s["simulated_time"], steps=str(s["steps"]),
                       wall_s="%.1f" % (s["wall_seconds"] if wall is None else wall))
+        left = 0.0 if values["state"] == "finished" else to_finish(path, s)
+        values["to_finish_s"] = "" if left is None else "%.0f" % left
     update(ledger, rid, values)
 
 

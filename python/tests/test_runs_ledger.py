@@ -61,6 +61,31 @@ class Ledger(unittest.TestCase):
         self.assertEqual(rows["b"]["steps"], "")
         self.assertEqual(rows["c"]["steps"], "9")
 
+    def test_end_records_what_finishing_costs(self):
+        # Issue 22 item 5: a run stopped at its wall limit says what finishing it costs at its
+        # last segment's pace. Here 0.3 s left at a mean dt of 0.01 s (last 100 steps: the
+        # 0.05 s steps before them do not count) is 30 steps at 20 s / 40 steps = 0.5 s each.
+        d = os.path.join(self.dir.name, "r")
+        os.makedirs(d)
+        with open(os.path.join(d, "timeseries.csv"), "w") as f:
+            f.write("step,t,dt,dt_reason\n")
+            f.writelines("%d,0,%g,cfl\n" % (k, 0.05 if k < 10 else 0.01) for k in range(110))
+        scene = os.path.join(self.dir.name, "scene.yaml")
+        with open(scene, "w") as f:
+            f.write("name: s\ntime:\n  cfl: 0.5\n  end: 0.5    # paper\n")
+        summ = {"state": "wall_limit", "simulated_time": 0.2, "steps": 110, "steps_this_run": 40,
+                "wall_seconds": 20.0, "wall_seconds_total": 55.0, "scene": scene}
+        for extra, left in (({}, "15"), ({"end_time": 0.8}, "30")):  # the scene's end; the summary's
+            with open(os.path.join(d, "summary.json"), "w") as f:
+                json.dump(dict(summ, **extra), f)
+            runs.end(self.ledger, "r", d, 75, 0)
+            row = next(runs.csv.DictReader(open(self.ledger)))
+            self.assertEqual((row["state"], row["to_finish_s"], row["wall_s"]), ("wall_limit", left, "55.0"))
+        with open(os.path.join(d, "summary.json"), "w") as f:
+            json.dump(dict(summ, state="finished", simulated_time=0.8, end_time=0.8), f)
+        runs.end(self.ledger, "r", d, 0, 0)
+        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "0")
+
     def test_durations(self):
         for text, s in [("3h", 10800), ("170m", 10200), ("3600s", 3600), ("02:50:00", 10200)]:
             self.assertAlmostEqual(runs.seconds(text), s)
