@@ -111,24 +111,26 @@ def update(ledger, rid, values):
         w.writerows(rows)
 
 
-def end_time(s):
-    """The time the run runs to: summary.json's end_time, else (summaries from before
-    2026-12-04) time.end of the scene file it names, in block style or flow style."""
+def end_time(path, s):
+    """The time the run runs to: summary.json's end_time, else (Voigt before 2026-12-04) the
+    run's own scene record PATH/scene.yaml: its "# --end-time" line, or time.end as Voigt's
+    YAML emitter writes it (block style, the keys of time: indented below it)."""
     if "end_time" in s:
         return float(s["end_time"])
     try:
-        with open(s.get("scene", "")) as f:
+        with open(os.path.join(path, "scene.yaml")) as f:
             text = f.read()
     except OSError:
         return None
-    m = re.search(r"^time:\s*(?:\{[^}]*?\bend:\s*|\n(?:[ \t]+.*\n)*?[ \t]+end:\s*)([-+0-9.eE]+)", text, re.M)
+    m = re.search(r"^# --end-time (\S+)$", text, re.M) or \
+        re.search(r"^time:\n(?:[ \t]+.*\n)*?[ \t]+end:[ \t]*([-+0-9.eE]+)[ \t]*$", text, re.M)
     return float(m.group(1)) if m else None
 
 
 def to_finish(path, s):
     """Wall seconds left to end_time at this segment's pace: the mean dt of its last 100 steps
     and its wall seconds per step (same ranks and load; dt may still shrink). None if unknown."""
-    t_end, n, wall = end_time(s), s.get("steps_this_run"), s.get("wall_seconds")
+    t_end, n, wall = end_time(path, s), s.get("steps_this_run"), s.get("wall_seconds")
     if t_end is None or not n or not wall:
         return None
     try:
@@ -148,8 +150,11 @@ def end(ledger, rid, path, code, since):
         wall = s.get("wall_seconds_total")
         values.update(t_reached="%.6g" % s["simulated_time"], steps=str(s["steps"]),
                       wall_s="%.1f" % (s["wall_seconds"] if wall is None else wall))
-        left = 0.0 if values["state"] == "finished" else to_finish(path, s)
-        values["to_finish_s"] = "" if left is None else "%.0f" % left
+        # Only a run that can go on has a cost to finish (a blow-up has none).
+        left = {"finished": 0.0, "wall_limit": None, "stopped": None}.get(values["state"], "")
+        if left is None:
+            left = to_finish(path, s)
+        values["to_finish_s"] = "" if left in (None, "") else "%.0f" % left
     update(ledger, rid, values)
 
 
@@ -212,7 +217,8 @@ def main(argv):
     elif cmd == "recorded":
         print(recorded(args[0], args[1]))
     elif cmd == "start":
-        update(args[0], args[1], dict(zip(["modulus", "model", "grid", "ranks"], args[2:6]), state="running"))
+        update(args[0], args[1], dict(zip(["modulus", "model", "grid", "ranks"], args[2:6]), state="running",
+                                      to_finish_s=""))
     elif cmd == "end":
         end(args[0], args[1], args[2], int(args[3]), float(args[4]))
     elif cmd == "table":

@@ -47,18 +47,17 @@ study_setup() {
   [ -x "$voigt" ] || { echo "run: no voigt binary at $voigt (build first, or set VOIGT)" >&2; exit 1; }
 }
 
+# Whether another job holds run $1's lock (is running it) right now.
+study_held() { ! (exec 9> "$out/$1.lock" && flock -n 9); }
+
 # One run ($1: its id; $2: restart or fresh) and its ledger row, "running" before and the
 # outcome after. Sets rc. $out/<id>.args: "modulus model grid", then voigt's arguments.
 study_one() {
-  local id=$1 dir="$out/$1" meta args extra limit since
-  { read -r -a meta; mapfile -t args; } < "$out/$id.args"
-  extra=(--overwrite)
-  [ "$2" = restart ] && extra=(--restart)
+  local id=$1 dir="$out/$1" mode=$2 meta args extra limit since now
   if [ -n "$deadline" ]; then
     limit=$((deadline - $(date +%s)))
     # Less than a minute left is not worth a start-up: the next job continues.
     if [ "$limit" -lt 60 ]; then echo "== $id: not started, $limit s left of --wall-limit"; rc=75; return; fi
-    extra+=(--wall-limit "${limit}s")
   fi
   # One writer per run: another job (a second script with --resume on the same DIR) that
   # holds the run's lock makes this one skip it (rc 0: not a failure).
@@ -66,18 +65,28 @@ study_one() {
   if ! flock -n "$study_lock"; then
     echo "== $id: another job is running it (lock $dir.lock), skipped"
     exec {study_lock}>&-
+    study_held_ids+=("$id")
     rc=0
     return
   fi
-  # The list this job works through was made when it started: another job may have finished
-  # the run since (two --resume jobs both list every unfinished run).
-  if [ "$("$py" "$runs" state "$dir")" = finished ]; then
-    echo "== $id: finished by another job since this one started, skipped"
-    exec {study_lock}>&-
-    rc=0
-    return
+  # The list this job works through was made when it started: another job (two --resume jobs
+  # both list every unfinished run) may have finished the run since, or begun it.
+  now=$("$py" "$runs" state "$dir")
+  if [ "$now" != "${study_listed[$id]:-$now}" ]; then
+    case "$now" in
+      finished | failed)
+        echo "== $id: $now in another job since this one started, skipped"
+        exec {study_lock}>&-
+        rc=0
+        return ;;
+      unfinished) mode=restart ;;  # begun and stopped by another job: continue it, do not overwrite
+    esac
   fi
-  echo "== $id -> $dir (${ranks} rank(s), $2)"
+  { read -r -a meta; mapfile -t args; } < "$out/$id.args"
+  extra=(--overwrite)
+  [ "$mode" = restart ] && extra=(--restart)
+  [ -n "$deadline" ] && extra+=(--wall-limit "${limit}s")
+  echo "== $id -> $dir (${ranks} rank(s), $mode)"
   "$py" "$runs" start "$ledger" "$id" "${meta[@]}" "$ranks"
   since=$(date +%s)
   # In the background, so that study_warn can pass a signal on while it runs; meanwhile the
@@ -137,6 +146,8 @@ study_stop() {
 study_runs() {
   local sets mu model id grid tagged name st rec all wl fresh=() failed=0
   todo=()  # also read by study_stop
+  declare -gA study_listed=()  # each listed run's state when listed (study_one checks it again)
+  study_held_ids=()            # runs skipped because another job held them
   name="$(basename "$(dirname "$study_scene")")"
   runs="$root/cases/runs.py"
   if [ "$quick" = 1 ]; then
@@ -159,7 +170,10 @@ study_runs() {
   if [ "$resume" = 1 ]; then
     for d in "$out"/*/; do
       id="$(basename "$d")"
-      if [ -f "$out/$id.args" ] && [ "$("$py" "$runs" state "$d")" = unfinished ]; then todo+=("$id"); fi
+      if [ -f "$out/$id.args" ] && [ "$("$py" "$runs" state "$d")" = unfinished ]; then
+        todo+=("$id")
+        study_listed[$id]=unfinished
+      fi
     done
   fi
   for mu in $moduli; do
@@ -176,6 +190,9 @@ study_runs() {
         if [ -n "$rec" ]; then echo "== $id: ledger says '$rec', but no checkpoint in $out/$id: starting again"; fi
       fi
       if [ "$resume" = 1 ] && [ "$st" = unfinished ] && [ -f "$out/$id.args" ]; then continue; fi
+      # Another job is running it: leave its .args as that job wrote them.
+      if study_held "$id"; then echo "== $id: another job is running it, skipped"; study_held_ids+=("$id"); continue; fi
+      study_listed[$id]=$st
       printf '%s\n' "$mu $tagged $grid" "${all[@]}" > "$out/$id.args"
       if [ "$resume" = 1 ] && [ "$st" = unfinished ]; then todo+=("$id"); else fresh+=("$id"); fi
     done
@@ -186,6 +203,11 @@ study_runs() {
   done
   "$py" "$runs" table "$ledger" "${todo[@]}" "${selected[@]}" | tee "$out/runs.md"
   if [ "$failed" = 1 ]; then echo "run: a run failed (ledger $ledger); no figures" >&2; exit 1; fi
+  # The job that holds a run draws the figures when it ends; here they would show it unfinished.
+  if [ "${#study_held_ids[@]}" -gt 0 ]; then
+    echo "run: ${study_held_ids[*]} held by another job (it draws the figures when it ends); no figures here"
+    figures=0
+  fi
 }
 
 # The figure inputs of one model ($1): fig_runs=(--run DIR LABEL ...) in moduli order, LABEL

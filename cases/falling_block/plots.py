@@ -85,7 +85,7 @@ def main():
         states.append((label, state_rows(cols, cell)))
         if cell:
             evs.append((label, events(cols, cell)))
-        if summ:
+        if series.finished(summ):
             results.append(results_row(d, cols, summ))
     if h:
         ax[3].axhline(1000 * h, color="k", lw=0.8, ls=":", label="contact gap (1 cell)")
@@ -203,19 +203,10 @@ def results_row(d, cols, summ):
     ratio = [(k + e) / (pe0 - p) if pe0 - p > 0 else 0.0
              for k, e, p in zip(cols["kinetic_energy"], cols["elastic_energy"], cols["solid_potential_energy"])]
     late = [r for t, r in zip(ts, ratio) if t >= 0.03]  # as events(): before, the released energy is ~0
-    fmt = lambda v, f="%.4f": "" if v is None else f % v  # noqa: E731
-    el, ls = summ.get("elasticity", {}), summ.get("level_set", {})
+    fmt = series.fmt
+    ls = summ.get("level_set", {})
     sharp0 = ls.get("sharp_volume_initial")
-    return {
-        "run_id": os.path.basename(os.path.normpath(d)),
-        "mu_S": fmt(el.get("shear_modulus"), "%g"),
-        "model": el.get("fluid_side", ""),
-        "volume_correction": ls.get("volume_correction", "none"),
-        "grid": "x".join(str(n) for n in summ["grid"]["cells"]),
-        "ranks": summ["grid"]["ranks"],
-        "t_end": fmt(summ["simulated_time"]),
-        "steps": summ["steps"],
-        "wall_s": fmt(summ["wall_seconds_total"], "%.0f"),
+    return dict(series.run_row(d, summ), **{
         "first_impact_s": fmt(cont.get("obstacle0", {}).get("first_contact_time")),
         "base_impact_s": fmt(cont.get("y-", {}).get("first_contact_time")),
         "peak_bending_mm": fmt(1000 * max(cols["solid_bending"]), "%.2f"),
@@ -224,7 +215,7 @@ def results_row(d, cols, summ):
         "volume_change_pct": fmt(100 * cols["volume_drift"][-1], "%.2f"),
         "sharp_volume_change_pct": fmt(100 * (ls["sharp_volume"] / sharp0 - 1) if sharp0 else None, "%.2f"),
         "free_fall_elastic_over_kinetic": fmt(free_fall_elastic(cols, summ), "%.2e"),
-    }
+    })
 
 
 def free_fall_elastic(cols, summ):

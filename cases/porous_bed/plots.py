@@ -61,24 +61,18 @@ def timeseries(d):
     return np.array(cols["t"]), np.array(cols["solid_cy"])
 
 
-def results_row(d, t, mean, rise):
+def results_row(d, summ, t, mean, rise):
     """Issue 22's porous-bed table: one finished run (its directory and summary.json)."""
-    summ = series.summary(d)
-    el, ls = summ.get("elasticity", {}), summ.get("level_set", {})
-    return {
-        "run_id": os.path.basename(os.path.normpath(d)),
-        "mu_S": "%g" % el.get("shear_modulus"),
-        "model": el.get("fluid_side", ""),
-        "volume_correction": ls.get("volume_correction", "none"),
-        "grid": "x".join(str(n) for n in summ["grid"]["cells"]),
-        "ranks": summ["grid"]["ranks"],
-        "t_end": "%.4f" % summ["simulated_time"],
-        "steps": summ["steps"],
-        "wall_s": "%.0f" % summ["wall_seconds_total"],
+    ls = summ.get("level_set", {})
+    sharp0 = ls.get("sharp_volume_initial")
+    return dict(series.run_row(d, summ), **{
         "midline_t": "%.4f" % t,
         "mean_gradient": "%.1f" % mean,
         "centroid_rise_mm": "%.2f" % rise,
-    }
+        # What the global correction holds (INT H) and the sharp volume (psi > 0), in per cent.
+        "volume_change_pct": series.fmt(100 * ls["volume_drift"] if "volume_drift" in ls else None, "%.2f"),
+        "sharp_volume_change_pct": series.fmt(100 * (ls["sharp_volume"] / sharp0 - 1) if sharp0 else None, "%.2f"),
+    })
 
 
 def main():
@@ -112,8 +106,9 @@ def main():
         grads.append(mean)
         k = int(np.argmin(np.abs(tt - t)))      # centroid rise at the midline's time
         rows.append((mu, t, mean, mean - RHO * G, 1000 * (cy[k] - cy[0])))
-        if a.csv and a.time is None and series.summary(d, {}).get("state") == "finished":
-            results.append(results_row(d, t, mean, rows[-1][-1]))
+        summ = series.summary(d, {})
+        if a.csv and a.time is None and series.finished(summ):
+            results.append(results_row(d, summ, t, mean, rows[-1][-1]))
     for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),
                              (ax5, f5, "-dp/dy (Pa/m); dashed: mean over 0.10-0.25 m", "gradient_midline.png")):
         ax.set_xlabel("y (m), midline x = z = 5.5 cm")

@@ -79,6 +79,8 @@ class SeriesTest(RunFixture):
         series.merge_csv(path, [{"run_id": "c", "x": 5, "y": 7}, {"run_id": "a", "x": 3, "y": 4}])
         self.assertEqual(series.read_csv(path), [{"run_id": "a", "x": "3", "y": "4"}, {"run_id": "b", "x": "2", "y": ""},
                                                  {"run_id": "c", "x": "5", "y": "7"}])
+        series.merge_csv(path, [{"run_id": "b", "x": 8}, {"run_id": "b", "x": 9}])  # the last of equal ids wins
+        self.assertEqual([r["x"] for r in series.read_csv(path)], ["3", "9", "5"])
 
 
 @unittest.skipIf(np is None, "needs numpy")

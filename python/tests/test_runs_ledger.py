@@ -70,21 +70,31 @@ class Ledger(unittest.TestCase):
         with open(os.path.join(d, "timeseries.csv"), "w") as f:
             f.write("step,t,dt,dt_reason\n")
             f.writelines("%d,0,%g,cfl\n" % (k, 0.05 if k < 10 else 0.01) for k in range(110))
-        scene = os.path.join(self.dir.name, "scene.yaml")
-        with open(scene, "w") as f:
-            f.write("name: s\ntime:\n  cfl: 0.5\n  end: 0.5    # paper\n")
+        record = "# The scene this run segment used, as Voigt ran it (segment 1):\n# s.yaml\n%sname: s\n" \
+                 "domain:\n  cells: [4, 4, 4]\ntime:\n  cfl: 0.5\n  end: 0.5\nlevel_set:\n  end: 9\n"
         summ = {"state": "wall_limit", "simulated_time": 0.2, "steps": 110, "steps_this_run": 40,
-                "wall_seconds": 20.0, "wall_seconds_total": 55.0, "scene": scene}
-        for extra, left in (({}, "15"), ({"end_time": 0.8}, "30")):  # the scene's end; the summary's
+                "wall_seconds": 20.0, "wall_seconds_total": 55.0}
+        # The end time from: the run's scene record (time.end, not another map's end), its
+        # --end-time line, summary.json's end_time (Voigt since 2026-12-04).
+        for head, extra, left in (("", {}, "15"), ("# --end-time 0.3\n", {}, "5"), ("", {"end_time": 0.8}, "30")):
+            with open(os.path.join(d, "scene.yaml"), "w") as f:
+                f.write(record % head)
             with open(os.path.join(d, "summary.json"), "w") as f:
                 json.dump(dict(summ, **extra), f)
             runs.end(self.ledger, "r", d, 75, 0)
             row = next(runs.csv.DictReader(open(self.ledger)))
             self.assertEqual((row["state"], row["to_finish_s"], row["wall_s"]), ("wall_limit", left, "55.0"))
+        runs.main(["runs.py", "start", self.ledger, "r", "1000", "m", "4x4x4", "1"])  # a new segment: unknown
+        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "")
         with open(os.path.join(d, "summary.json"), "w") as f:
             json.dump(dict(summ, state="finished", simulated_time=0.8, end_time=0.8), f)
         runs.end(self.ledger, "r", d, 0, 0)
         self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "0")
+        with open(os.path.join(d, "summary.json"), "w") as f:
+            json.dump(dict(summ, state="blow_up", end_time=0.8), f)
+        runs.end(self.ledger, "r", d, 1, 0)  # a blow-up cannot be finished
+        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))[("state")], "failed")
+        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "")
 
     def test_durations(self):
         for text, s in [("3h", 10800), ("170m", 10200), ("3600s", 3600), ("02:50:00", 10200)]:

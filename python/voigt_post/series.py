@@ -9,6 +9,7 @@
     cols = series.timeseries("output/run")   # cols["t"], cols["solid_vy"], ... (floats)
 """
 import csv
+import fcntl
 import json
 import os
 
@@ -93,13 +94,56 @@ def write_csv(path, rows):
             w.writerow(r)
 
 
+def fmt(v, f="%.4f"):
+    """A CSV cell: "" for a missing value (None), else the value formatted."""
+    return "" if v is None else f % v
+
+
+def finished(summ):
+    """Whether a summary.json says its run reached its end (summaries from before the "state"
+    key: finished unless it says why it stopped)."""
+    return bool(summ) and summ.get("state", "finished" if "stopped" not in summ else None) == "finished"
+
+
+def run_row(d, summ):
+    """The columns every case's results.csv starts with: one run (its folder and summary.json)."""
+    el, ls, grid = summ.get("elasticity", {}), summ.get("level_set", {}), summ.get("grid", {})
+    wall = summ.get("wall_seconds_total")  # null after a restart from an older checkpoint:
+    if wall is None:                       # this segment's, then
+        wall = summ.get("wall_seconds")
+    return {
+        "run_id": os.path.basename(os.path.normpath(d)),
+        "mu_S": fmt(el.get("shear_modulus"), "%g"),
+        "model": el.get("fluid_side", ""),
+        "volume_correction": ls.get("volume_correction", "none"),
+        "grid": "x".join(str(n) for n in grid.get("cells", [])),
+        "ranks": grid.get("ranks", ""),
+        "t_end": fmt(summ.get("simulated_time")),
+        "steps": summ.get("steps", ""),
+        "wall_s": fmt(wall, "%.0f"),
+    }
+
+
 def merge_csv(path, rows, key="run_id"):
     """Rows (dicts) into the CSV at PATH: a row whose KEY is already there replaces that row in
-    place, the others are appended; rows of PATH the new ones do not name are kept (e.g. runs
-    whose outputs are no longer on this machine). New columns go last, blank in old rows."""
+    place, the others are appended (the last of equal keys wins); rows of PATH the new ones do
+    not name are kept (e.g. runs whose outputs are no longer on this machine). New columns go
+    last, blank in old rows. Read and rewritten under an exclusive lock on PATH itself, as
+    cases/runs.py does with the ledger: two study jobs may end together."""
     if not rows:
         return
-    old = read_csv(path) if os.path.exists(path) else []
-    new = {r[key]: r for r in rows}
-    merged = [new.pop(r[key], r) for r in old]
-    write_csv(path, merged + [r for r in rows if r[key] in new])
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+    with os.fdopen(fd, "r+", newline="") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        old = list(csv.DictReader(f))
+        new = {r[key]: r for r in rows}
+        merged = [new.pop(r.get(key), r) for r in old]
+        merged += list(new.values())
+        keys = []
+        for r in merged:
+            keys += [k for k in r if k not in keys]
+        f.seek(0)
+        f.truncate()
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(merged)

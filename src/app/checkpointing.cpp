@@ -214,7 +214,7 @@ void Simulation::writeSummary(const RunResult& r, const std::string& stop) {
   j["state"] = stop.empty() ? "finished" : r.wallLimit ? "wall_limit" : r.signal ? "stopped" : "blow_up";
   j["resumable"] = !stop.empty() && !blowUp && !r.checkpoint.empty();
   if (opt_.wallLimit > 0) j["wall_limit_seconds"] = opt_.wallLimit;
-  j["end_time"] = opt_.endTime > 0 ? opt_.endTime : scene_.time.endTime; // what a resume runs to
+  j["end_time"] = endTime(); // what a resume runs to
   const std::string path = opt_.outDir + "/summary.json", tmp = path + ".tmp";
   std::ofstream os(tmp, std::ios::trunc);
   os << j.dump(2) << "\n";

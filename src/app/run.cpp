@@ -86,7 +86,7 @@ RunResult Simulation::run() {
     checkpointer_ = std::make_unique<Checkpointer>(g, opt_.outDir, ck_.keep);
   }
   initialize();
-  const double tEnd = opt_.endTime > 0 ? opt_.endTime : scene_.time.endTime;
+  const double tEnd = endTime();
   const long maxSteps = opt_.maxSteps >= 0 ? opt_.maxSteps : scene_.time.maxSteps;
   nextOutput_ = scene_.output.interval > 0 ? scene_.output.interval : tEnd;
   if (!ckFile.empty()) {

@@ -91,6 +91,7 @@ class Simulation {
   long advanceTo(double t, const StepEngine::Each& each = {}, long maxSteps = -1);
   StepEngine& engine() { return engine_; }
   RunResult run();              // until end time or max steps, with output
+  double endTime() const { return opt_.endTime > 0 ? opt_.endTime : scene_.time.endTime; } // --end-time wins
   State& state() { return st_; }
   const State& state() const { return st_; }
   // The scene's effect of that name, or nullptr (tests and diagnostics).

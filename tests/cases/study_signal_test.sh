@@ -62,18 +62,29 @@ grep -q "stopped by SIGUSR1" "$WORK/first.log" || fail "the run was not stopped 
 t1=$(ledger t_reached)
 python3 -c "import sys; sys.exit(not 0 < float(sys.argv[1]) < 0.13)" "$t1" || fail "t_reached $t1 not in (0, 0.13)"
 
+# study_one alone, as a job reaches a run on the list it made when it started (two --resume
+# jobs both list every unfinished run): late_job MODE LISTED_STATE LEDGER VOIGT > LOG.
+run_dir=$(ls -d "$WORK"/out/*/)
+run_dir=${run_dir%/}
+late_job() {
+  bash -c 'set -euo pipefail; . "$1/cases/study.sh"; out=$(dirname "$2"); id=$(basename "$2"); py=python3
+           runs=$1/cases/runs.py; ledger=$5; deadline=""; ranks=1; launch=(); voigt=$6
+           study_scene=$1/cases/falling_block/falling_block.yaml; declare -A study_listed=([$id]=$4)
+           study_held_ids=(); study_one "$id" "$3"; echo "rc=$rc"' _ "$SRC" "$run_dir" "$@"
+}
+# Listed as new, begun and stopped by another job since: continued, not overwritten (voigt
+# replaced by echo, its own ledger: only the arguments it would get are checked).
+late_job fresh new "$WORK/echo_ledger.csv" echo > "$WORK/begun.log" 2>&1 || fail "study_one on a begun run exited with $?"
+grep -q -- "--restart" "$WORK/begun.log" || fail "a run begun by another job was not continued with --restart"
+grep -q -- "--overwrite" "$WORK/begun.log" && fail "a run begun by another job would be overwritten"
+
 "${RUN[@]}" --resume > "$WORK/resume.log" 2>&1 || fail "--resume exited with $?"
 grep -q "restart: " "$WORK/resume.log" || fail "--resume did not restart from the checkpoint"
 [ "$(ledger state)" = finished ] || fail "ledger state after --resume '$(ledger state)'"
-# A job whose list was made before another job finished a run (two --resume jobs both list
-# every unfinished run) skips it when its turn comes, instead of restarting it.
-run_dir=$(dirname "$(ls "$WORK"/out/*/summary.json)")
+# Listed as unfinished, finished by another job since: skipped, not restarted.
 before=$(md5sum < "$run_dir/summary.json")
-bash -c 'set -euo pipefail; . "$1/cases/study.sh"; out=$(dirname "$2"); py=python3; runs=$1/cases/runs.py
-         ledger=$VOIGT_LEDGER; deadline=""; ranks=1; launch=(); voigt=$VOIGT
-         study_scene=$1/cases/falling_block/falling_block.yaml; study_one "$(basename "$2")" restart
-         echo "rc=$rc"' _ "$SRC" "$run_dir" > "$WORK/late.log" 2>&1 || fail "study_one on a finished run exited with $?"
-grep -q "finished by another job" "$WORK/late.log" || fail "a finished run on a job's list was not skipped"
+late_job restart unfinished "$VOIGT_LEDGER" "$VOIGT" > "$WORK/late.log" 2>&1 || fail "study_one on a finished run exited with $?"
+grep -q "finished in another job" "$WORK/late.log" || fail "a finished run on a job's list was not skipped"
 grep -q "^rc=0" "$WORK/late.log" || fail "skipping a finished run is not rc 0"
 [ "$(md5sum < "$run_dir/summary.json")" = "$before" ] || fail "the finished run's summary.json changed"
 [ "$(ledger state)" = finished ] || fail "ledger state '$(ledger state)' after the late job"

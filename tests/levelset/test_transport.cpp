@@ -238,7 +238,7 @@ TEST(Transport, GlobalVolumeCorrection) {
   // README tables and the bounds of the tests above).
   EXPECT_LT(z.end.shapeError, 1.1 * 0.293);
   EXPECT_LT(std::abs(z.end.sharpChange), 0.0279); // the constraint alone: -2.79 %
-  EXPECT_LT(z64.end.shapeError, 1.1 * 1.443);     // 64^2, the constraint alone: E = 1.443
+  EXPECT_LT(z64.end.shapeError, 1.443); // 64^2: below the constraint alone's E = 1.443 (1.392 measured)
   EXPECT_LT(std::abs(z64.end.hChange), 1e-8);
   EXPECT_LT(v2.end.shapeError / v2.h, 1.1 * 0.15);
   // T = 8 (issue 21: area within 5 % at t = T): +1.8 % measured at 64^2.
