@@ -10,7 +10,8 @@ Writes DIR/pressure_midline.png (Fig. 4), gradient_midline.png (Fig. 5), gradien
 (Fig. 6: mean -dp/dy over y = 0.10-0.25 m, linear fit, slope, intercept, R^2), pressure_slice.png
 (Fig. 7: mid-plane z, lowest and highest mu_S), deformation.png (Fig. 8: psi = 0 in the mid-plane
 at the first, middle and last output, and the bed centroid's rise against time), and prints a
-markdown table. The midline is the probe `midline` (probe_midline.csv) at its last time, or with
+markdown table, which also has the gradient of the section-averaged pressure (section_gradient).
+The midline is the probe `midline` (probe_midline.csv) at its last time, or with
 --time T the pressure field of the last output at or before T (mean of the four cell columns
 around x = z = 5.5 cm; cell centres), so runs can be compared at an earlier common time; Figs. 7-8
 then stop at that output too. With --csv FILE, one row per finished run (results_row) is merged
@@ -56,18 +57,30 @@ def midline(d, at=None):
 slice_mid = fields.mid_z             # (y, x) at the middle z
 
 
+def section_gradient(d, at=None):
+    """(t, mean -dp/dy over y = 0.10-0.25 m) of the pressure averaged over each cross-section
+    (all cells at that y) in the last field output at or before `at`: the midline's measure
+    without its steps where the line crosses a sphere that holds elastic stress."""
+    t, path, _, _, sp = frames(d, at)[-1]
+    pbar = fields.read(path, "pressure").mean(axis=(0, 2))
+    y = (np.arange(pbar.size) + 0.5) * sp[1]
+    sel = (y >= Y0) & (y <= Y1)
+    return t, float(np.mean(-np.gradient(pbar, y)[sel]))
+
+
 def timeseries(d):
     cols = series.timeseries(d)
     return np.array(cols["t"]), np.array(cols["solid_cy"])
 
 
-def results_row(d, summ, t, mean, rise):
+def results_row(d, summ, t, mean, section, rise):
     """Issue 22's porous-bed table: one finished run (its directory and summary.json)."""
     ls = summ.get("level_set", {})
     sharp0 = ls.get("sharp_volume_initial")
     return dict(series.run_row(d, summ), **{
         "midline_t": "%.4f" % t,
         "mean_gradient": "%.1f" % mean,
+        "section_gradient": "%.1f" % section,
         "centroid_rise_mm": "%.2f" % rise,
         # What the global correction holds (INT H) and the sharp volume (psi > 0), in per cent.
         "volume_change_pct": series.fmt(100 * ls["volume_drift"] if "volume_drift" in ls else None, "%.2f"),
@@ -105,10 +118,11 @@ def main():
         mus.append(mu)
         grads.append(mean)
         k = int(np.argmin(np.abs(tt - t)))      # centroid rise at the midline's time
-        rows.append((mu, t, mean, mean - RHO * G, 1000 * (cy[k] - cy[0])))
+        ts, sec = section_gradient(d, a.time)
+        rows.append((mu, t, mean, mean - RHO * G, ts, sec, 1000 * (cy[k] - cy[0])))
         summ = series.summary(d, {})
         if a.csv and a.time is None and series.finished(summ):
-            results.append(results_row(d, summ, t, mean, rows[-1][-1]))
+            results.append(results_row(d, summ, t, mean, sec, rows[-1][-1]))
     for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),
                              (ax5, f5, "-dp/dy (Pa/m); dashed: mean over 0.10-0.25 m", "gradient_midline.png")):
         ax.set_xlabel("y (m), midline x = z = 5.5 cm")
@@ -182,10 +196,11 @@ def main():
     for f, name in ((f7, "pressure_slice.png"), (f8, "deformation.png")):
         f.tight_layout()
         f.savefig(os.path.join(a.outdir, name), dpi=80)
-    print("| mu_S (Pa) | t (s) | mean -dp/dy, 0.10-0.25 m (Pa/m) | minus rho g (Pa/m) | centroid rise (mm) |")
-    print("|---|---|---|---|---|")
+    print("| mu_S (Pa) | t (s) | mean -dp/dy on the midline, 0.10-0.25 m (Pa/m) | minus rho g (Pa/m) "
+          "| t of the last field output (s) | section-averaged -dp/dy, 0.10-0.25 m (Pa/m) | centroid rise (mm) |")
+    print("|---|---|---|---|---|---|---|")
     for r in rows:
-        print("| %g | %.3g | %.1f | %.1f | %.2f |" % r)
+        print("| %g | %.3g | %.1f | %.1f | %.3g | %.1f | %.2f |" % r)
     if a.csv:
         series.merge_csv(a.csv, results)
         print("plots.py: %d finished run(s) merged into %s" % (len(results), a.csv))
