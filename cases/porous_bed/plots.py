@@ -104,7 +104,7 @@ def main():
     pk = json.load(open(os.path.join(HERE, "packing.json")))["voidage_written"]
     f4, ax4 = plt.subplots(figsize=(6, 4.5))
     f5, ax5 = plt.subplots(figsize=(6, 4.5))
-    mus, grads, rows, results = [], [], [], []
+    mus, grads, secs, rows, results = [], [], [], [], []
     for n, (mu, d) in enumerate(runs):
         t, y, p = midline(d, a.time)
         gr = -np.gradient(p, y)
@@ -119,6 +119,7 @@ def main():
         grads.append(mean)
         k = int(np.argmin(np.abs(tt - t)))      # centroid rise at the midline's time
         ts, sec = section_gradient(d, a.time)
+        secs.append(sec)
         rows.append((mu, t, mean, mean - RHO * G, ts, sec, 1000 * (cy[k] - cy[0])))
         summ = series.summary(d, {})
         if a.csv and a.time is None and series.finished(summ):
@@ -133,20 +134,22 @@ def main():
         ax.set_title(("Fig. 4: pressure on the midline" if ax is ax4 else "Fig. 5: pressure gradient") + sfx, fontsize=9)
         f.tight_layout()
         f.savefig(os.path.join(a.outdir, name), dpi=80)
-    # Fig. 6: linear fit of the mean gradient against mu_S.
-    mus, grads = np.array(mus), np.array(grads)
+    # Fig. 6: linear fit of the mean gradient against mu_S (midline, and section-averaged).
+    mus = np.array(mus)
     f6, ax6 = plt.subplots(figsize=(6, 4.5))
-    ax6.plot(mus, grads, "o", label="Voigt")
-    fit = None
-    if len(mus) >= 2:
-        slope, icpt = np.polyfit(mus, grads, 1)
-        pred = slope * mus + icpt
-        ss = np.sum((grads - grads.mean()) ** 2)
-        r2 = 1 - np.sum((grads - pred) ** 2) / ss if ss > 0 else float("nan")
-        fit = (slope, icpt, r2)
-        xs = np.linspace(0, mus.max() * 1.05, 50)
-        ax6.plot(xs, slope * xs + icpt, "k-", lw=0.8,
-                 label="fit: %.3g mu_S + %.3g Pa/m, R^2 = %.4f" % fit)
+    fits = []
+    for vals, mark, ls, name in ((grads, "o", "k-", "midline"), (secs, "s", "k--", "section-averaged")):
+        vals = np.array(vals)
+        ax6.plot(mus, vals, mark, label="Voigt, " + name)
+        if len(mus) >= 2:
+            slope, icpt = np.polyfit(mus, vals, 1)
+            pred = slope * mus + icpt
+            ss = np.sum((vals - vals.mean()) ** 2)
+            r2 = 1 - np.sum((vals - pred) ** 2) / ss if ss > 0 else float("nan")
+            fits.append((name, slope, icpt, r2))
+            xs = np.linspace(0, mus.max() * 1.05, 50)
+            ax6.plot(xs, slope * xs + icpt, ls, lw=0.8,
+                     label="fit (%s): %.3g mu_S + %.3g Pa/m, R^2 = %.4f" % fits[-1])
     for e, lab in ((pk["interior"], "interior, full section"), (pk["interior_flow_region"], "interior, outside hold layer")):
         ax6.axhline(ergun(e), ls=":", color="C3" if "full" in lab else "C2",
                     label="Ergun, e = %.3f (%s): %.1f Pa/m" % (e, lab, ergun(e)))
@@ -155,8 +158,9 @@ def main():
     if a.rigid:  # same measure (midline, y = 0.10-0.25 m) on the bed of fixed spheres
         t_r, y_r, p_r = midline(a.rigid, a.time)
         gr_r = -np.gradient(p_r, y_r)
-        rigid = (t_r, float(np.mean(gr_r[(y_r >= Y0) & (y_r <= Y1)])))
-        ax6.axhline(rigid[1], ls="-.", color="C4", label="rigid bed (fixed spheres), t = %.3g s: %.1f Pa/m" % rigid)
+        rigid = (t_r, float(np.mean(gr_r[(y_r >= Y0) & (y_r <= Y1)]))) + section_gradient(a.rigid, a.time)
+        ax6.axhline(rigid[1], ls="-.", color="C4", label="rigid bed (fixed spheres), t = %.3g s: %.1f Pa/m" % rigid[:2])
+        ax6.axhline(rigid[3], ls=":", color="C4", label="rigid bed, section-averaged: %.1f Pa/m" % rigid[3])
     ax6.set_xlabel("mu_S (Pa)")
     ax6.set_ylabel("mean -dp/dy over y = 0.10-0.25 m (Pa/m)")
     ax6.set_title("Fig. 6: gradient against shear modulus" + sfx, fontsize=9)
@@ -204,11 +208,12 @@ def main():
     if a.csv:
         series.merge_csv(a.csv, results)
         print("plots.py: %d finished run(s) merged into %s" % (len(results), a.csv))
-    if fit:
-        print("\nlinear fit: slope %.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.4f" % fit)
+    for fit in fits:
+        print("\nlinear fit (%s): slope %.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.4f" % fit)
     if rigid:
-        print("rigid bed (rigid_bed.py, fixed spheres) at t = %.3g s: mean -dp/dy %.1f Pa/m, minus rho g %.1f Pa/m" % (
-            rigid + (rigid[1] - RHO * G,)))
+        print("rigid bed (rigid_bed.py, fixed spheres) at t = %.3g s: mean -dp/dy on the midline %.1f Pa/m (minus "
+              "rho g %.1f); section-averaged %.1f Pa/m (t = %.3g s)" % (rigid[0], rigid[1], rigid[1] - RHO * G,
+                                                                      rigid[3], rigid[2]))
     print("Ergun (Eq. 23): e = %.3f -> %.1f Pa/m; e = %.3f -> %.1f Pa/m" % (
         pk["interior"], ergun(pk["interior"]), pk["interior_flow_region"], ergun(pk["interior_flow_region"])))
 
