@@ -44,8 +44,13 @@ void Halo::exchange(const std::vector<Field>& fields) {
       sendHi_ = Buf("halo_sendHi", total);
       recvLo_ = Buf("halo_recvLo", total);
       recvHi_ = Buf("halo_recvHi", total);
+#if defined(KOKKOS_ENABLE_CUDA)
+      hsLo_ = StageBuf("halo_stage_sendLo", total), hsHi_ = StageBuf("halo_stage_sendHi", total);
+      hrLo_ = StageBuf("halo_stage_recvLo", total), hrHi_ = StageBuf("halo_stage_recvHi", total);
+#else
       hsLo_ = Kokkos::create_mirror_view(sendLo_), hsHi_ = Kokkos::create_mirror_view(sendHi_);
       hrLo_ = Kokkos::create_mirror_view(recvLo_), hrHi_ = Kokkos::create_mirror_view(recvHi_);
+#endif
     }
     for (size_t f = 0; f < fields.size(); ++f) {
       pack(fields[f], sLo, sendLo_, f * per);

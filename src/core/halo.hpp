@@ -24,12 +24,18 @@ class Halo {
 
  private:
   const Grid* g_;
-  // Message buffers, kept across calls and grown on demand, and their host
-  // mirrors for MPI (the same memory on a host backend; pinned-able staging on a
-  // device, created once, not per exchange).
+  // Message buffers, kept across calls and grown on demand, and the host buffers
+  // MPI reads and writes: the same memory on a host backend; on CUDA, page-locked
+  // (pinned) host memory, created once, so the device copies run at full PCIe speed
+  // (Debian's Open MPI is not CUDA-aware: no device pointers to MPI).
   using Buf = Kokkos::View<double*, MemSpace>;
+#if defined(KOKKOS_ENABLE_CUDA)
+  using StageBuf = Kokkos::View<double*, Kokkos::CudaHostPinnedSpace>;
+#else
+  using StageBuf = Buf::HostMirror;
+#endif
   Buf sendLo_, sendHi_, recvLo_, recvHi_;
-  Buf::HostMirror hsLo_, hsHi_, hrLo_, hrHi_;
+  StageBuf hsLo_, hsHi_, hrLo_, hrHi_;
 };
 
 } // namespace voigt
