@@ -126,10 +126,10 @@ void loop(benchmark::State& s, F&& f) {
 }
 
 // --- advection ---
-// Node advection of u by u, 3 components, face-flux form as the step runs it
-// (kernels/advection_faces.hpp): reads u (3), RMW rhs (3 * 2): 9 doubles.
-// The point-wise form (3 addNodeAdvection calls, each face flux twice) beside
-// it for the ratio; same byte count.
+// Node advection of u by u, 3 components, as the step runs it (addVelocityAdvectionFaces,
+// kernels/advection_faces.hpp: the face-flux form on host backends, the point-wise form on
+// a GPU since 2026-12-04): reads u (3), RMW rhs (3 * 2): 9 doubles. The point-wise form
+// (3 addNodeAdvection calls, each face flux twice) beside it for the ratio; same byte count.
 FluxScratch* gScratch = nullptr; // freed before Kokkos::finalize
 FluxScratch& scratch() {
   if (!gScratch) gScratch = new FluxScratch;
