@@ -85,6 +85,10 @@ class TpetraPoisson final : public PoissonSolver {
         Teuchos::ParameterList p;
         p.set("verbosity", "none");
         p.set("coarse: type", "RELAXATION"); // KLU2 fails on the singular operator
+        // On a threaded node (OpenMP, CUDA) MueLu aggregates with its Kokkos algorithms, whose
+        // phases race unless told otherwise: the hierarchy, and so every iterate, would differ
+        // from run to run (a restart not bit-identical). The Serial node ignores it.
+        p.set("aggregation: deterministic", true);
         auto& cp = p.sublist("coarse: params");
         cp.set("relaxation: type", "Symmetric Gauss-Seidel");
         cp.set("relaxation: sweeps", cfg_.coarseSweeps);
