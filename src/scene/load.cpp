@@ -235,7 +235,7 @@ void readSettings(const Section& top, Scene& sc) {
                                                                           : ProjectionCfg::Op::Approximate;
   P.tolerance = p.number("tolerance", P.tolerance, {0, 1, true, true});
   P.maxIterations = int(p.integer("max_iterations", P.maxIterations, 1, 100000));
-  P.preconditioner = p.choice("preconditioner", P.preconditioner, {"sgs", "jacobi", "none", "multigrid"});
+  P.preconditioner = p.choice("preconditioner", P.preconditioner, {"sgs", "jacobi", "none", "multigrid", "fast_diagonalization"});
   if (!p.has("preconditioner")) {
     // Measured (perf/README.md, "Exact projection"): with the exact operator at density ratio
     // 1000, SGS-CG reaches the 1000-iteration cap at 64^3 where multigrid converges in ~200;

@@ -1,6 +1,7 @@
 #pragma once
 // Small Tpetra operators the Poisson solver hands to Belos. Include only from
 // src/solvers/*.cpp (Trilinos headers).
+#include "solvers/fast_diagonalization.hpp"
 #include "solvers/null_space.hpp"
 #include "solvers/trilinos_types.hpp"
 
@@ -39,6 +40,29 @@ struct ProjectedPrec final : Operator {
   }
   Teuchos::RCP<const Operator> M;
   const NullSpace* ns;
+};
+
+// The fast-diagonalization preconditioner (fast_diagonalization.hpp) as a Tpetra operator:
+// Y = alpha A0^+ X + beta Y, identity rows (cells inside obstacles) left at 0.
+struct FastDiagPrec final : Operator {
+  FastDiagPrec(Teuchos::RCP<const Map> m, const FastDiagonalization* fd, RowFlags ident, int nrows)
+      : map(m), fd(fd), ident(ident), nrows(nrows), t("fd_prec_t", nrows) {}
+  Teuchos::RCP<const Map> getDomainMap() const override { return map; }
+  Teuchos::RCP<const Map> getRangeMap() const override { return map; }
+  void apply(const MV& X, MV& Y, Teuchos::ETransp, Scalar alpha, Scalar beta) const override {
+    for (size_t c = 0; c < Y.getNumVectors(); ++c) {
+      ConstRowVector x = Kokkos::subview(X.getLocalViewDevice(Tpetra::Access::ReadOnly), Kokkos::ALL(), c);
+      RowVector y = Kokkos::subview(Y.getLocalViewDevice(Tpetra::Access::ReadWrite), Kokkos::ALL(), c);
+      fd->apply(x, t);
+      zeroIdentityRows(t, ident, nrows);
+      fdAxpby(alpha, t, beta, y, nrows);
+    }
+  }
+  Teuchos::RCP<const Map> map;
+  const FastDiagonalization* fd;
+  RowFlags ident;
+  int nrows;
+  RowVector t;
 };
 
 } // namespace voigt::tpetra

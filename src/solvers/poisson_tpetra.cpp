@@ -61,6 +61,11 @@ class TpetraPoisson final : public PoissonSolver {
     Kokkos::deep_copy(pattern_, -1); // no pattern yet: the first setCoefficients finds the modes
     ns_ = std::make_unique<NullSpace>(geom_, rows_, nrows_, comm_);
     if (exact_ && cfg.preconditioner == "multigrid") buildNearNull();
+    if (cfg.preconditioner == "fast_diagonalization") {
+      if (!exact_)
+        throw std::invalid_argument("projection.preconditioner: fast_diagonalization needs operator: exact");
+      fd_ = std::make_unique<FastDiagonalization>(g, comm_);
+    }
     buildSolver();
   }
 
@@ -76,6 +81,7 @@ class TpetraPoisson final : public PoissonSolver {
     };
     if (patternChanged) ns_->rebuild(ident_, applyA, anorm_); // null(A) depends on the pattern only
     if (ifpack_) ifpack_->compute();
+    if (fd_ && patternChanged) fd_->setup(coef); // which faces keep node rows
     if (cfg_.preconditioner == "multigrid") {
       // Reused set-up (projection.multigrid_reuse) was built for the old zero pattern,
       // whose identity rows and null space it may encode: rebuild when that changes, and
@@ -319,9 +325,12 @@ class TpetraPoisson final : public PoissonSolver {
       ifpack_->setParameters(p);
       ifpack_->initialize(); // graph only; compute() per setCoefficients
       problem_->setLeftPrec(Teuchos::rcp(new ProjectedPrec(ifpack_, ns_.get())));
+    } else if (pc == "fast_diagonalization") {
+      problem_->setLeftPrec(
+          Teuchos::rcp(new ProjectedPrec(Teuchos::rcp(new FastDiagPrec(map_, fd_.get(), ident_, nrows_)), ns_.get())));
     } else if (pc != "none" && pc != "multigrid") {
       throw std::invalid_argument("projection.preconditioner: unknown '" + pc +
-                                  "' (sgs | jacobi | none | multigrid)");
+                                  "' (sgs | jacobi | none | multigrid | fast_diagonalization)");
     }
     // MueLu's "full" (and "emin", for the emin algorithm only) are left out: "full" keeps
     // the fine-level smoother, whose stored inverse diagonal goes stale while A changes
@@ -354,6 +363,7 @@ class TpetraPoisson final : public PoissonSolver {
   RowFlags pattern_;          // per row: bit 3 corner + d set when coef_d(corner) != 0 (fillValues)
   double anorm_ = 0;          // ||A||_inf
   std::unique_ptr<NullSpace> ns_;
+  std::unique_ptr<FastDiagonalization> fd_; // preconditioner fast_diagonalization
   Teuchos::RCP<CountedOperator> counted_; // A as Belos sees it
   Teuchos::RCP<Ifpack2::Preconditioner<Scalar, LO, GO, Node>> ifpack_;
   Teuchos::RCP<MueLu::TpetraOperator<Scalar, LO, GO, Node>> muelu_;

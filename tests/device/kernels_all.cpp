@@ -29,8 +29,10 @@
 #include "kernels/boundary.hpp"
 #include "kernels/elastic.hpp"
 #include "kernels/extension.hpp"
+#include "kernels/fast_diag.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/levelset.hpp"
+#include "kernels/poisson_rows.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
 #include "kernels/reinit.hpp"
@@ -149,6 +151,56 @@ void projectionStressReductions(const Grid& g, Fields& f) {
   }
   put("globalSum", globalSum(g, 0.25));
   put("kineticEnergy", kineticEnergy(g, f.u, f.rho));
+}
+
+// The fast-diagonalization passes (kernels/fast_diag.hpp) on a whole-grid array taken from p.
+double sumAbs3(const Grid3& a) {
+  double s = 0;
+  Kokkos::parallel_reduce(
+      "sum_abs3", Kokkos::RangePolicy<ExecSpace>(0, (int)a.size()),
+      KOKKOS_LAMBDA(int p, double& t) { t += std::fabs(a.data()[p]); }, s);
+  return s;
+}
+
+Dense denseOf(int n) {
+  Dense V("V", n, n);
+  auto h = Kokkos::create_mirror_view(V);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < n; ++a) h(i, a) = std::cos(0.1 * (i + 1) * (a + 1)) / n;
+  Kokkos::deep_copy(V, h);
+  return V;
+}
+
+void fastDiagonalization(const Grid& g, Fields& f) {
+  const Range3 cells = cellRange(g);
+  const int n0 = g.ln[0], n1 = g.ln[1], n2 = g.ln[2];
+  Grid3 a("a", n0, n1, n2), b("b", n0, n1, n2), inv("inv", n0, n1, n2);
+  Kokkos::deep_copy(a, Kokkos::subview(f.p, std::make_pair(cells.b[0], cells.e[0]),
+                                       std::make_pair(cells.b[1], cells.e[1]), std::make_pair(cells.b[2], cells.e[2])));
+  const Dense V0 = denseOf(n0), V1 = denseOf(n1), V2 = denseOf(n2);
+  fdTransform<0, false>(a, b, V0);
+  fdTransform<1, true>(b, a, V1);
+  fdTransform<2, false>(a, b, V2);
+  put("fdTransform", sumAbs3(b));
+  Kokkos::View<double* [3], MemSpace> lam("lam", 20);
+  auto lh = Kokkos::create_mirror_view(lam);
+  for (int q = 0; q < 20; ++q)
+    for (int d = 0; d < 3; ++d) lh(q, d) = 0.2 * q / (d + 1);
+  Kokkos::deep_copy(lam, lh);
+  fdInverseEigenvalues(inv, lam, 1.0, 2.0, 3.0, 1e-10);
+  put("fdInverseEigenvalues", sumAbs3(inv));
+  fdScale(b, inv, a);
+  put("fdScale", sumAbs3(a));
+  const int lo[3] = {g.ng, g.ng + 1, g.ng}, hi[3] = {g.ng + 1, g.ng + n1, g.ng + n2};
+  put("fdFaceMax", fdFaceMax(f.coef, lo, hi));
+  RowVector x("x", n0), y("y", n0);
+  Kokkos::deep_copy(x, Kokkos::subview(a, Kokkos::ALL(), 1, 2));
+  Kokkos::deep_copy(y, Kokkos::subview(b, Kokkos::ALL(), 2, 1));
+  fdAxpby(0.5, x, -2.0, y, n0);
+  auto yh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), y);
+  double sy = 0;
+  for (int i = 0; i < n0; ++i) sy += std::fabs(yh(i));
+  put("fdAxpby", sy);
 }
 
 void elasticity(const Grid& g, Fields& f) {
@@ -300,6 +352,7 @@ int main(int argc, char** argv) {
       levelSet(g, f);
       projectionStressReductions(g, f);
       elasticity(g, f);
+      fastDiagonalization(g, f);
       reinitialisation(g, f);
       check::effects(g, f); // kernels_effects.cpp
       boundaries(g, f);

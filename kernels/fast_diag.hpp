@@ -1,0 +1,95 @@
+#pragma once
+// Fast diagonalization (Lynch, Rice & Thomas 1964) of the exact projection operator at
+// one density. With no-slip walls, inflow, outflow or periodic faces the 27-point
+// A0 = D B0 D^T (B0 = 1/w, kernels/projection_ops.hpp) is the tensor sum
+//   A0 = sum_d (1/h_d^2) K_d (x) M_e (x) M_f,   K = D1^T W^-1 D1, M = A1^T W^-1 A1
+// of 1-D node-to-cell differences D1 and means A1, and M = E - K/4 with E diagonal; so
+// the 1-D generalised eigenvectors K V = E V Lambda (V^T E V = I) diagonalise every
+// factor at once: V^T M V = I - Lambda/4, and
+//   A0^+ r = V (Lambda3^+ (V^T r)),  V = V_0 (x) V_1 (x) V_2  (src/solvers/fast_diagonalization.hpp).
+// These are its passes over a whole-grid array (global cells, i fastest): one 1-D
+// transform along an axis (a small dense matrix applied to every grid line) and the
+// eigenvalue scaling. 2 n_axis flops a cell a transform.
+#include "core/field.hpp"
+#include "core/index_space.hpp"
+
+namespace voigt {
+
+using Grid3 = Kokkos::View<double***, Kokkos::LayoutLeft, MemSpace>; // a whole grid, i fastest
+using CGrid3 = Kokkos::View<const double***, Kokkos::LayoutLeft, MemSpace>;
+using Dense = Kokkos::View<double**, Kokkos::LayoutLeft, MemSpace>;   // V_d(node-free index q, mode a)
+
+namespace fd_detail {
+template <int Axis>
+KOKKOS_INLINE_FUNCTION double at(const CGrid3& v, int i, int j, int k, int q) {
+  return Axis == 0 ? v(q, j, k) : Axis == 1 ? v(i, q, k) : v(i, j, q);
+}
+} // namespace fd_detail
+
+// Forward (coefficients): out(.., a, ..) = sum_q V(q, a) in(.., q, ..) along Axis.
+// Back (values):          out(.., q, ..) = sum_a V(q, a) in(.., a, ..).
+template <int Axis, bool Back>
+inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V) {
+  const Range3 all{{0, 0, 0}, {(int)in.extent(0), (int)in.extent(1), (int)in.extent(2)}};
+  const int m = (int)V.extent(0);
+  for_each3("fd_transform", all, KOKKOS_LAMBDA(int i, int j, int k) {
+    const int idx[3] = {i, j, k};
+    const int a = idx[Axis];
+    double s = 0;
+    for (int q = 0; q < m; ++q) s += (Back ? V(a, q) : V(q, a)) * fd_detail::at<Axis>(in, i, j, k, q);
+    out(i, j, k) = s;
+  });
+}
+
+// out = inv * in (inv: 1/eigenvalue of A0, 0 on its null modes).
+inline void fdScale(const Grid3& in, const Grid3& inv, const Grid3& out) {
+  const Range3 all{{0, 0, 0}, {(int)in.extent(0), (int)in.extent(1), (int)in.extent(2)}};
+  for_each3("fd_scale", all, KOKKOS_LAMBDA(int i, int j, int k) { out(i, j, k) = inv(i, j, k) * in(i, j, k); });
+}
+
+// inv(a,b,c) = 1 / sum_d lambda_d/h_d^2 prod_{e != d} (1 - lambda_e/4), 0 below rel * max.
+inline void fdInverseEigenvalues(const Grid3& inv, const Kokkos::View<double* [3], MemSpace>& lam,
+                                 double ih0, double ih1, double ih2, double rel) {
+  const Range3 all{{0, 0, 0}, {(int)inv.extent(0), (int)inv.extent(1), (int)inv.extent(2)}};
+  for_each3("fd_eigen", all, KOKKOS_LAMBDA(int a, int b, int c) {
+    const double l0 = lam(a, 0), l1 = lam(b, 1), l2 = lam(c, 2);
+    const double m0 = 1 - 0.25 * l0, m1 = 1 - 0.25 * l1, m2 = 1 - 0.25 * l2;
+    inv(a, b, c) = ih0 * l0 * m1 * m2 + ih1 * m0 * l1 * m2 + ih2 * m0 * m1 * l2;
+  });
+  double dmax = 0;
+  Kokkos::parallel_reduce(
+      "fd_eigen_max", Kokkos::RangePolicy<ExecSpace>(0, (int)inv.size()),
+      KOKKOS_LAMBDA(int p, double& m) { m = m > inv.data()[p] ? m : inv.data()[p]; }, Kokkos::Max<double>(dmax));
+  const double cut = rel * dmax;
+  Kokkos::parallel_for(
+      "fd_eigen_invert", Kokkos::RangePolicy<ExecSpace>(0, (int)inv.size()), KOKKOS_LAMBDA(int p) {
+        const double d = inv.data()[p];
+        inv.data()[p] = d > cut ? 1.0 / d : 0.0;
+      });
+  Kokkos::fence();
+}
+
+// Largest velocity coefficient (any component) over the nodes [b, e) of a face: > 0 when a
+// component is free there (fast_diagonalization.cpp reads the faces' kind off it).
+inline double fdFaceMax(const VecField& coef, const int b[3], const int e[3]) {
+  const VecField c = coef;
+  double m = 0;
+  Kokkos::parallel_reduce(
+      "fd_face_free", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({b[0], b[1], b[2]}, {e[0], e[1], e[2]}),
+      KOKKOS_LAMBDA(int i, int j, int k, double& mx) {
+        for (int d = 0; d < 3; ++d) mx = mx > c(d, i, j, k) ? mx : c(d, i, j, k);
+      },
+      Kokkos::Max<double>(m));
+  return m;
+}
+
+// y = alpha t + beta y over n rows (beta = 0: y not read, as Tpetra's apply contract says).
+template <class V, class CV>
+inline void fdAxpby(double alpha, const CV& t, double beta, const V& y, int n) {
+  Kokkos::parallel_for(
+      "fd_prec_axpby", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int r) { y(r) = alpha * t(r) + (beta == 0 ? 0.0 : beta * y(r)); });
+  Kokkos::fence();
+}
+
+} // namespace voigt

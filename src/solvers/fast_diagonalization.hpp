@@ -1,0 +1,58 @@
+#pragma once
+// A preconditioner for the exact projection operator A = D B D^T (poisson.hpp): the exact
+// inverse of the same operator at one density, A0^+, by fast diagonalization
+// (kernels/fast_diag.hpp). Why it works where multigrid struggles: A's hard modes are the
+// plane-modulated checkerboards near its three null lines and the fourth-order corner
+// (perf/README.md, "Exact projection"), and A0 has exactly the same ones, so A0^+ A is
+// close to the identity except where 1/rho differs from the reference; measured flat in n
+// (perf/README.md, "Fast diagonalization").
+//
+// A0's boundary treatment is read off the coefficient pattern of the faces: a face node
+// row is kept when any velocity component is free on that face (no-slip walls and
+// inflow drop it, outflow keeps it, periodic axes wrap). Exact when every face is of one
+// kind for all components (slip walls are not: then a preconditioner only); obstacles and
+// density jumps are left to CG.
+//
+// MPI: the transforms need whole grid lines; this version gathers the right-hand side on
+// rank 0, transforms there and scatters the result (collective, O(N) messages).
+#include <mpi.h>
+
+#include <vector>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "kernels/fast_diag.hpp"
+#include "kernels/poisson_rows.hpp"
+
+namespace voigt {
+
+using ConstRowVector = Kokkos::View<const double*, Kokkos::LayoutLeft, MemSpace>;
+
+class FastDiagonalization {
+ public:
+  FastDiagonalization(const Grid& g, MPI_Comm comm);
+  // Reads which faces keep their node rows from coef (collective); builds the 1-D
+  // eigenvectors and the eigenvalue table. Cheap (1-D eigenproblems): call when the
+  // zero pattern of coef changes.
+  void setup(const VecField& coef);
+  // z = A0^+ r on this rank's rows (r: owned rows, i fastest). Collective.
+  void apply(const ConstRowVector& r, const RowVector& z) const;
+  // Per axis: node rows kept at the low and high face (for tests and `voigt check`).
+  bool keptLo(int d) const { return keep_[d][0]; }
+  bool keptHi(int d) const { return keep_[d][1]; }
+
+ private:
+  void transform(const CGrid3& in, const Grid3& out) const; // A0^+ on a whole grid
+  Grid g_;                 // this rank's box (a copy; the communicator is comm_)
+  int n_[3];
+  bool keep_[3][2] = {{false, false}, {false, false}, {false, false}};
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  std::vector<int> boxes_; // per rank: c0[3], ln[3] (rank 0 only)
+  Dense V_[3];
+  Grid3 inv_, t1_, t2_, all_; // whole grid, on rank 0 only (empty elsewhere)
+  Grid3::HostMirror hostAll_;  // all_'s host copy (more than one rank)
+  mutable std::vector<double> sendBuf_, recvBuf_;
+};
+
+} // namespace voigt
