@@ -177,8 +177,7 @@ inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const Ve
   // 1.94 against 2.91 ms at 256^3, 0.043 against 0.078 at 64^3 on an H200
   // (perf/portability/device_check_h200.md, NodeAdvection[Pointwise]). Plain `if`: nvcc
   // refuses a lambda's first capture inside `if constexpr`.
-  constexpr bool onDevice = !std::is_same<ExecSpace, Kokkos::DefaultHostExecutionSpace>::value;
-  if (onDevice) {
+  if (kOnDevice) {
     for (int c = 0; c < 3; ++c) {
       const Field r = rhs.c[c];
       if (assign) // as the face form's rhs = 0 + tend: zero the nodes it writes, no others

@@ -49,7 +49,7 @@ KOKKOS_INLINE_FUNCTION long long nonFiniteInRow(const double* row, int b0, int e
 inline long long countNonFinite(const Field& f, Range3 r) {
   long long n = 0;
 #if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
-  if constexpr (!std::is_same<ExecSpace, Kokkos::DefaultHostExecutionSpace>::value) {
+  if constexpr (kOnDevice) {
     Kokkos::parallel_reduce(
         "count_non_finite", r.policy(),
         KOKKOS_LAMBDA(int i, int j, int k, long long& acc) {
@@ -114,7 +114,7 @@ inline long long countNonFinite(const ArrayBoxes& a) {
   const auto box = a.box;
   const long long sj = a.sj, sk = a.sk;
 #if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
-  if constexpr (!std::is_same<ExecSpace, Kokkos::DefaultHostExecutionSpace>::value) {
+  if constexpr (kOnDevice) {
     using Policy4 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<4, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
     Kokkos::parallel_reduce(
         "count_non_finite_all", Policy4({a.lo[0], a.lo[1], a.lo[2], 0}, {a.hi[0], a.hi[1], a.hi[2], a.n}),

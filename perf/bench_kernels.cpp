@@ -24,6 +24,7 @@
 #include "kernels/levelset.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/extension.hpp"
+#include "kernels/fast_diag.hpp"
 #include "kernels/reinit.hpp"
 #include "kernels/stress.hpp"
 #ifndef VOIGT_NO_TPETRA
@@ -286,6 +287,19 @@ void BM_HaloVector(benchmark::State& s) {
   for (auto _ : s) h.exchange(f.u);
   s.counters["halo_MB_per_exchange"] = double(h.bytes) / s.iterations() / 1e6;
 }
+// --- fast diagonalization (kernels/fast_diag.hpp) ---
+// A 1-D transform of the grid along an axis (Arg 0-2 forward, 3-5 back): 2 n flops a cell, in and
+// out once (16 B; lines reused from cache): GFLOPs against the core's peak is the measure.
+void BM_FastDiagTransform(benchmark::State& s) {
+  auto& f = fx();
+  const int axis = s.range(0) % 3, m = f.g.ln[axis];
+  Grid3 a("a", f.g.ln[0], f.g.ln[1], f.g.ln[2]), b("b", f.g.ln[0], f.g.ln[1], f.g.ln[2]);
+  Dense V("V", m, m);
+  Kokkos::deep_copy(a, 1.0), Kokkos::deep_copy(V, 1.0 / m);
+  void (*t[6])(const CGrid3&, const Grid3&, const Dense&) = {fdTransform<0, false>, fdTransform<1, false>, fdTransform<2, false>, fdTransform<0, true>, fdTransform<1, true>, fdTransform<2, true>};
+  loop(s, [&] { t[s.range(0)](a, b, V); });
+  report(s, 16), s.counters["GFLOPs"] = benchmark::Counter(2.0 * m * f.g.cellsOwned() / 1e9, benchmark::Counter::kIsIterationInvariantRate);
+}
 #ifndef VOIGT_NO_TPETRA
 // --- Poisson (Tpetra through PoissonSolver) ---
 std::unique_ptr<PoissonSolver> solver(bool exact, const char* pc, int maxIt) {
@@ -359,6 +373,7 @@ void registerAll(bool wall) {
   add("Divergence", BM_Divergence);
   add("SubtractGradient", BM_SubtractGradient);
   add("HaloVector", BM_HaloVector);
+  add("FastDiagTransform", BM_FastDiagTransform)->DenseRange(0, 5);
 #ifndef VOIGT_NO_TPETRA
   add("PoissonMatvec", BM_PoissonMatvec)->Arg(0)->Arg(1);
   add("CGIteration", BM_CGIteration)->Arg(0)->Arg(1)->Arg(2)->UseManualTime();

@@ -12,6 +12,10 @@
 
 namespace voigt {
 
+// Do kernels run on a device (CUDA, HIP, SYCL) rather than on the host? Chooses launch
+// shapes and loop forms; one definition for every kernel family.
+constexpr bool kOnDevice = !std::is_same<ExecSpace, Kokkos::DefaultHostExecutionSpace>::value;
+
 struct Range3 {
   std::array<int, 3> b, e; // local [b, e)
   long long size() const { return 1LL * (e[0] - b[0]) * (e[1] - b[1]) * (e[2] - b[2]); }
@@ -59,7 +63,7 @@ struct Range3 {
 template <class F>
 inline void for_each3(const char* name, const Range3& r, const F& f) {
 #if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
-  if constexpr (!std::is_same<ExecSpace, Kokkos::DefaultHostExecutionSpace>::value) {
+  if constexpr (kOnDevice) {
     Kokkos::parallel_for(name, r.devicePolicy(), f);
     return;
   }

@@ -82,22 +82,52 @@ void axisFactors(int n, bool periodic, bool keepLo, bool keepHi, std::vector<dou
 
 } // namespace
 
+namespace {
+// Range [lo, lo + n) of part p of m items split over `size` parts as evenly as possible.
+void split(int m, int size, int p, int& lo, int& n) {
+  lo = int(1LL * m * p / size);
+  n = int(1LL * m * (p + 1) / size) - lo;
+}
+} // namespace
+
 FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm) : g_(g), comm_(comm) {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
   for (int d = 0; d < 3; ++d) n_[d] = g.n[d];
+  std::vector<Box> blocks(size_), zs(size_), ys(size_);
   const int mine[6] = {g.c0[0], g.c0[1], g.c0[2], g.ln[0], g.ln[1], g.ln[2]};
-  if (rank_ == 0) boxes_.resize(6 * size_);
-  MPI_Gather(mine, 6, MPI_INT, boxes_.data(), 6, MPI_INT, 0, comm_);
-  if (rank_ == 0) {
-    inv_ = Grid3("fd_inverse_eigenvalues", n_[0], n_[1], n_[2]);
-    t1_ = Grid3("fd_t1", n_[0], n_[1], n_[2]);
-    t2_ = Grid3("fd_t2", n_[0], n_[1], n_[2]);
-    if (size_ > 1) {
-      all_ = Grid3("fd_all", n_[0], n_[1], n_[2]);
-      hostAll_ = Kokkos::create_mirror_view(all_);
-    }
+  std::vector<int> all(6 * size_);
+  MPI_Allgather(mine, 6, MPI_INT, all.data(), 6, MPI_INT, comm_);
+  for (int p = 0; p < size_; ++p) {
+    blocks[p].lo = {all[6 * p], all[6 * p + 1], all[6 * p + 2]};
+    blocks[p].n = {all[6 * p + 3], all[6 * p + 4], all[6 * p + 5]};
+    int lo, n;
+    split(n_[2], size_, p, lo, n);
+    zs[p].lo = {0, 0, lo};
+    zs[p].n = {n_[0], n_[1], n};
+    split(n_[1], size_, p, lo, n);
+    ys[p].lo = {0, lo, 0};
+    ys[p].n = {n_[0], n, n_[2]};
   }
+  zs_ = zs[rank_];
+  ys_ = ys[rank_];
+  if (size_ > 1) {
+    toZ_ = std::make_unique<Redistribute>(comm_, blocks, zs);
+    zToY_ = std::make_unique<Redistribute>(comm_, zs, ys);
+    z1_ = Grid3("fd_z1", zs_.n[0], zs_.n[1], zs_.n[2]);
+    z2_ = Grid3("fd_z2", zs_.n[0], zs_.n[1], zs_.n[2]);
+    y1_ = Grid3("fd_y1", ys_.n[0], ys_.n[1], ys_.n[2]);
+    y2_ = Grid3("fd_y2", ys_.n[0], ys_.n[1], ys_.n[2]);
+    zh_ = Kokkos::create_mirror_view(z1_);
+    yh_ = Kokkos::create_mirror_view(y1_);
+    rowsH_.resize(g.cellsOwned());
+  } else {
+    z1_ = Grid3("fd_t1", n_[0], n_[1], n_[2]);
+    z2_ = Grid3("fd_t2", n_[0], n_[1], n_[2]);
+    y1_ = z1_;
+    y2_ = z2_;
+  }
+  inv_ = Grid3("fd_inverse_eigenvalues", ys_.n[0], ys_.n[1], ys_.n[2]);
 }
 
 void FastDiagonalization::setup(const VecField& coef) {
@@ -113,33 +143,49 @@ void FastDiagonalization::setup(const VecField& coef) {
     keep_[e][0] = flags[2 * e] != 0;
     keep_[e][1] = flags[2 * e + 1] != 0;
   }
-  if (rank_ != 0) return;
+  // Every rank builds the 1-D factors (small dense eigenproblems, identical everywhere).
   Kokkos::View<double* [3], MemSpace> lam("fd_lambda", std::max(n_[0], std::max(n_[1], n_[2])));
   auto lamH = Kokkos::create_mirror_view(lam);
+  std::vector<double> l[3];
   for (int e = 0; e < 3; ++e) {
-    std::vector<double> V, l;
-    axisFactors(n_[e], g.periodic[e], keep_[e][0], keep_[e][1], V, l);
+    std::vector<double> V;
+    axisFactors(n_[e], g.periodic[e], keep_[e][0], keep_[e][1], V, l[e]);
     V_[e] = Dense("fd_V", n_[e], n_[e]);
     auto vh = Kokkos::create_mirror_view(V_[e]);
     for (int i = 0; i < n_[e]; ++i)
       for (int a = 0; a < n_[e]; ++a) vh(i, a) = V[i + n_[e] * a];
     Kokkos::deep_copy(V_[e], vh);
-    for (int a = 0; a < n_[e]; ++a) lamH(a, e) = l[a];
+    for (int a = 0; a < n_[e]; ++a) lamH(a, e) = l[e][a];
   }
   Kokkos::deep_copy(lam, lamH);
   // Null modes of A0 (eigenvalue 0 up to round-off) get 0: A's own null space is removed
-  // by the caller (ProjectedPrec), and a mode A0 lacks is never in range(A) exactly.
-  fdInverseEigenvalues(inv_, lam, 1 / (g.h[0] * g.h[0]), 1 / (g.h[1] * g.h[1]), 1 / (g.h[2] * g.h[2]), 1e-10);
+  // by the caller (ProjectedPrec), and a mode A0 lacks is never in range(A) exactly. The
+  // largest eigenvalue is the largest of each 1-D factor's products (all factors >= 0).
+  const double ih[3] = {1 / (g.h[0] * g.h[0]), 1 / (g.h[1] * g.h[1]), 1 / (g.h[2] * g.h[2])};
+  double dmax = 0;
+  for (double l0 : l[0])
+    for (double l1 : l[1])
+      for (double l2 : l[2]) {
+        const double m0 = 1 - 0.25 * l0, m1 = 1 - 0.25 * l1, m2 = 1 - 0.25 * l2;
+        dmax = std::max(dmax, ih[0] * l0 * m1 * m2 + ih[1] * m0 * l1 * m2 + ih[2] * m0 * m1 * l2);
+      }
+  fdInverseEigenvalues(inv_, lam, ih[0], ih[1], ih[2], ys_.lo[1], 1e-10 * dmax);
 }
 
-void FastDiagonalization::transform(const CGrid3& in, const Grid3& out) const {
-  fdTransform<0, false>(in, t1_, V_[0]);
-  fdTransform<1, false>(t1_, t2_, V_[1]);
-  fdTransform<2, false>(t2_, t1_, V_[2]);
-  fdScale(t1_, inv_, t2_);
-  fdTransform<2, true>(t2_, t1_, V_[2]);
-  fdTransform<1, true>(t1_, t2_, V_[1]);
-  fdTransform<0, true>(t2_, out, V_[0]);
+void FastDiagonalization::forwardXY(const Grid3& z1, const Grid3& z2) const {
+  fdTransform<0, false>(z1, z2, V_[0]);
+  fdTransform<1, false>(z2, z1, V_[1]);
+}
+
+void FastDiagonalization::zAndScale(const Grid3& y1, const Grid3& y2) const {
+  fdTransform<2, false>(y1, y2, V_[2]);
+  fdScale(y2, inv_, y1);
+  fdTransform<2, true>(y1, y2, V_[2]);
+}
+
+void FastDiagonalization::backYX(const Grid3& z1, const Grid3& z2) const {
+  fdTransform<1, true>(z1, z2, V_[1]);
+  fdTransform<0, true>(z2, z1, V_[0]);
   Kokkos::fence();
 }
 
@@ -147,48 +193,33 @@ void FastDiagonalization::apply(const ConstRowVector& r, const RowVector& z) con
   if (size_ == 1) {
     const CGrid3 in(r.data(), n_[0], n_[1], n_[2]);
     const Grid3 out(z.data(), n_[0], n_[1], n_[2]);
-    transform(in, out);
+    fdTransform<0, false>(in, z1_, V_[0]);
+    fdTransform<1, false>(z1_, z2_, V_[1]);
+    fdTransform<2, false>(z2_, z1_, V_[2]);
+    fdScale(z1_, inv_, z2_);
+    fdTransform<2, true>(z2_, z1_, V_[2]);
+    fdTransform<1, true>(z1_, z2_, V_[1]);
+    fdTransform<0, true>(z2_, out, V_[0]);
+    Kokkos::fence();
     return;
   }
-  const int nloc = (int)g_.cellsOwned();
-  Kokkos::View<double*, Kokkos::LayoutLeft, Kokkos::HostSpace> rh("fd_rows_host", nloc);
+  // Rows are this rank's block, i fastest: the block layout Redistribute expects.
+  const Kokkos::View<double*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> rh(rowsH_.data(),
+                                                                                                rowsH_.size());
   Kokkos::deep_copy(rh, r);
-  std::vector<int> counts, displs;
-  if (rank_ == 0) {
-    counts.resize(size_);
-    displs.resize(size_);
-    int off = 0;
-    for (int p = 0; p < size_; ++p) {
-      counts[p] = boxes_[6 * p + 3] * boxes_[6 * p + 4] * boxes_[6 * p + 5];
-      displs[p] = off;
-      off += counts[p];
-    }
-    recvBuf_.resize(off);
-  }
-  MPI_Gatherv(rh.data(), nloc, MPI_DOUBLE, recvBuf_.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, comm_);
-  if (rank_ == 0) {
-    // Unpack every rank's box (rows i fastest) into the whole grid, transform, pack back.
-    auto unpack = [&](bool in) {
-      for (int p = 0; p < size_; ++p) {
-        const int* b = &boxes_[6 * p];
-        double* buf = recvBuf_.data() + displs[p];
-        for (int k = 0; k < b[5]; ++k)
-          for (int j = 0; j < b[4]; ++j)
-            for (int i = 0; i < b[3]; ++i) {
-              double& g = hostAll_(b[0] + i, b[1] + j, b[2] + k);
-              double& l = buf[i + b[3] * (j + b[4] * k)];
-              if (in) g = l;
-              else l = g;
-            }
-      }
-    };
-    unpack(true);
-    Kokkos::deep_copy(all_, hostAll_);
-    transform(all_, all_);
-    Kokkos::deep_copy(hostAll_, all_);
-    unpack(false);
-  }
-  MPI_Scatterv(recvBuf_.data(), counts.data(), displs.data(), MPI_DOUBLE, rh.data(), nloc, MPI_DOUBLE, 0, comm_);
+  toZ_->forward(rowsH_.data(), zh_.data());
+  Kokkos::deep_copy(z1_, zh_);
+  forwardXY(z1_, z2_);                      // result in z1_
+  Kokkos::deep_copy(zh_, z1_);
+  zToY_->forward(zh_.data(), yh_.data());
+  Kokkos::deep_copy(y1_, yh_);
+  zAndScale(y1_, y2_);                      // result in y2_
+  Kokkos::deep_copy(yh_, y2_);
+  zToY_->backward(yh_.data(), zh_.data());
+  Kokkos::deep_copy(z1_, zh_);
+  backYX(z1_, z2_);                         // result in z1_
+  Kokkos::deep_copy(zh_, z1_);
+  toZ_->backward(zh_.data(), rowsH_.data());
   Kokkos::deep_copy(z, rh);
 }
 

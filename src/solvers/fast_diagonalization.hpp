@@ -13,14 +13,17 @@
 // kind for all components (slip walls are not: then a preconditioner only); obstacles and
 // density jumps are left to CG.
 //
-// MPI: the transforms need whole grid lines; this version gathers the right-hand side on
-// rank 0, transforms there and scatters the result (collective, O(N) messages).
+// MPI: the transforms need whole grid lines. The x and y transforms run on z-slabs (each
+// rank a range of k with whole x-y planes), the z transform and the scaling on y-slabs;
+// three box-to-box moves (src/core/redistribute.hpp) each way: blocks -> z-slabs -> y-slabs.
 #include <mpi.h>
 
+#include <memory>
 #include <vector>
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "core/redistribute.hpp"
 #include "kernels/fast_diag.hpp"
 #include "kernels/poisson_rows.hpp"
 
@@ -42,17 +45,21 @@ class FastDiagonalization {
   bool keptHi(int d) const { return keep_[d][1]; }
 
  private:
-  void transform(const CGrid3& in, const Grid3& out) const; // A0^+ on a whole grid
+  void forwardXY(const Grid3& z1, const Grid3& z2) const; // z-slab: x then y forward
+  void zAndScale(const Grid3& y1, const Grid3& y2) const; // y-slab: z forward, scale, z back
+  void backYX(const Grid3& z1, const Grid3& z2) const;    // z-slab: y then x back
   Grid g_;                 // this rank's box (a copy; the communicator is comm_)
   int n_[3];
   bool keep_[3][2] = {{false, false}, {false, false}, {false, false}};
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
-  std::vector<int> boxes_; // per rank: c0[3], ln[3] (rank 0 only)
+  Box zs_, ys_;            // this rank's z-slab and y-slab
+  std::unique_ptr<Redistribute> toZ_, zToY_; // blocks -> z-slabs, z-slabs -> y-slabs
   Dense V_[3];
-  Grid3 inv_, t1_, t2_, all_; // whole grid, on rank 0 only (empty elsewhere)
-  Grid3::HostMirror hostAll_;  // all_'s host copy (more than one rank)
-  mutable std::vector<double> sendBuf_, recvBuf_;
+  Grid3 inv_;              // 1/eigenvalue on this rank's y-slab of modes
+  Grid3 z1_, z2_, y1_, y2_; // z-slab and y-slab work arrays (1 rank: the whole grid, z == y)
+  Grid3::HostMirror zh_, yh_;
+  mutable std::vector<double> rowsH_;
 };
 
 } // namespace voigt

@@ -187,7 +187,7 @@ void fastDiagonalization(const Grid& g, Fields& f) {
   for (int q = 0; q < 20; ++q)
     for (int d = 0; d < 3; ++d) lh(q, d) = 0.2 * q / (d + 1);
   Kokkos::deep_copy(lam, lh);
-  fdInverseEigenvalues(inv, lam, 1.0, 2.0, 3.0, 1e-10);
+  fdInverseEigenvalues(inv, lam, 1.0, 2.0, 3.0, 0, 1e-10);
   put("fdInverseEigenvalues", sumAbs3(inv));
   fdScale(b, inv, a);
   put("fdScale", sumAbs3(a));

@@ -1,0 +1,85 @@
+// Box-to-box redistribution of a cell array: see redistribute.hpp.
+#include "core/redistribute.hpp"
+
+#include <Kokkos_Core.hpp>
+
+#include <algorithm>
+#include <utility>
+
+namespace voigt {
+
+namespace {
+
+Box intersect(const Box& a, const Box& b) {
+  Box r;
+  for (int d = 0; d < 3; ++d) {
+    r.lo[d] = std::max(a.lo[d], b.lo[d]);
+    const int hi = std::min(a.lo[d] + a.n[d], b.lo[d] + b.n[d]);
+    r.n[d] = std::max(0, hi - r.lo[d]);
+  }
+  if (r.size() == 0) r.n = {0, 0, 0};
+  return r;
+}
+
+// Copies the part `p` between a box array (LayoutLeft in `owner`'s extents) and a packed
+// buffer (LayoutLeft in p's extents). toBuf: array -> buffer.
+void copyPart(const Box& owner, const Box& p, double* arr, double* buf, bool toBuf) {
+  using HostGrid = Kokkos::View<double***, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+  const HostGrid A(arr, owner.n[0], owner.n[1], owner.n[2]), B(buf, p.n[0], p.n[1], p.n[2]);
+  auto range = [&](int d) {
+    const int o = p.lo[d] - owner.lo[d];
+    return std::make_pair(o, o + p.n[d]);
+  };
+  const auto sub = Kokkos::subview(A, range(0), range(1), range(2));
+  if (toBuf) Kokkos::deep_copy(B, sub);
+  else Kokkos::deep_copy(sub, B);
+}
+
+} // namespace
+
+Redistribute::Redistribute(MPI_Comm comm, const std::vector<Box>& src, const std::vector<Box>& dst) : comm_(comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  mySrc_ = src[rank];
+  myDst_ = dst[rank];
+  sendCount_.assign(size, 0);
+  recvCount_.assign(size, 0);
+  for (int p = 0; p < size; ++p) {
+    const Box s = intersect(mySrc_, dst[p]);
+    const Box r = intersect(src[p], myDst_);
+    sends_.push_back({s, p});
+    recvs_.push_back({r, p});
+    sendCount_[p] = (int)s.size();
+    recvCount_[p] = (int)r.size();
+  }
+  sendDispl_.assign(size, 0);
+  recvDispl_.assign(size, 0);
+  for (int p = 1; p < size; ++p) {
+    sendDispl_[p] = sendDispl_[p - 1] + sendCount_[p - 1];
+    recvDispl_[p] = recvDispl_[p - 1] + recvCount_[p - 1];
+  }
+  sendBuf_.resize(std::max<size_t>(1, sendDispl_.back() + sendCount_.back()));
+  recvBuf_.resize(std::max<size_t>(1, recvDispl_.back() + recvCount_.back()));
+}
+
+void Redistribute::move(const double* in, double* out, bool reverse) const {
+  // Reverse: the roles of the send and receive lists swap (same counts, same buffers).
+  const auto& sends = reverse ? recvs_ : sends_;
+  const auto& recvs = reverse ? sends_ : recvs_;
+  const auto& sc = reverse ? recvCount_ : sendCount_;
+  const auto& sd = reverse ? recvDispl_ : sendDispl_;
+  const auto& rc = reverse ? sendCount_ : recvCount_;
+  const auto& rd = reverse ? sendDispl_ : recvDispl_;
+  auto& sb = reverse ? recvBuf_ : sendBuf_;
+  auto& rb = reverse ? sendBuf_ : recvBuf_;
+  const Box& from = reverse ? myDst_ : mySrc_;
+  const Box& to = reverse ? mySrc_ : myDst_;
+  for (size_t p = 0; p < sends.size(); ++p)
+    if (sc[p] > 0) copyPart(from, sends[p].box, const_cast<double*>(in), sb.data() + sd[p], true);
+  MPI_Alltoallv(sb.data(), sc.data(), sd.data(), MPI_DOUBLE, rb.data(), rc.data(), rd.data(), MPI_DOUBLE, comm_);
+  for (size_t p = 0; p < recvs.size(); ++p)
+    if (rc[p] > 0) copyPart(to, recvs[p].box, out, rb.data() + rd[p], false);
+}
+
+} // namespace voigt

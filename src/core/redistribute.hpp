@@ -1,0 +1,41 @@
+#pragma once
+// Moves a whole-grid cell array from one box decomposition over the ranks to another (e.g.
+// Voigt's blocks to z-slabs): each rank holds one box, stored i fastest (LayoutLeft) with
+// the box's own extents; what moves is the intersection of a source box with each
+// destination box, in one MPI_Alltoallv through host buffers made once. The fast
+// diagonalization's transposes (src/solvers/fast_diagonalization.cpp) are built on it.
+#include <mpi.h>
+
+#include <array>
+#include <vector>
+
+namespace voigt {
+
+struct Box {
+  std::array<int, 3> lo{}, n{}; // global first cell and extent per axis (n 0: empty)
+  long long size() const { return 1LL * n[0] * n[1] * n[2]; }
+};
+
+class Redistribute {
+ public:
+  // src[p], dst[p]: every rank's box before and after (the same lists on every rank).
+  Redistribute(MPI_Comm comm, const std::vector<Box>& src, const std::vector<Box>& dst);
+  // out (this rank's dst box) = in (this rank's src box) moved. Host pointers. Collective.
+  void forward(const double* in, double* out) const { move(in, out, false); }
+  // The reverse move: in (dst layout) -> out (src layout).
+  void backward(const double* in, double* out) const { move(in, out, true); }
+
+ private:
+  struct Part {
+    Box box;      // intersection, global cells
+    int rank;
+  };
+  void move(const double* in, double* out, bool reverse) const;
+  MPI_Comm comm_;
+  Box mySrc_, myDst_;
+  std::vector<Part> sends_, recvs_; // forward direction: what this rank sends and receives
+  std::vector<int> sendCount_, sendDispl_, recvCount_, recvDispl_;
+  mutable std::vector<double> sendBuf_, recvBuf_;
+};
+
+} // namespace voigt
