@@ -237,11 +237,14 @@ void readSettings(const Section& top, Scene& sc) {
   P.maxIterations = int(p.integer("max_iterations", P.maxIterations, 1, 100000));
   P.preconditioner = p.choice("preconditioner", P.preconditioner, {"sgs", "jacobi", "none", "multigrid", "fast_diagonalization"});
   if (!p.has("preconditioner")) {
-    // Measured (perf/README.md, "Exact projection"): with the exact operator at density ratio
-    // 1000, SGS-CG reaches the 1000-iteration cap at 64^3 where multigrid converges in ~200;
-    // on two-phase scenes multigrid is faster from 24^3 (the walk-through's ball: 0.158 against
-    // 0.208 s a step), on small single-phase ones its set-up costs more than it saves
-    // (Taylor-Green 32x32x4: 0.030 against 0.028 s; shear wave 0.021 against 0.014 s).
+    // Exact operator: fast diagonalization, the operator's own inverse at one density (one
+    // CG iteration there), and the only preconditioner measured to converge on both paper
+    // scenes: falling block 75^3 75-83 iterations (multigrid 595-631), porous bed 51-55
+    // (multigrid: the 1000 cap), Taylor-Green 32x32x4 14x faster than SGS (perf/README.md,
+    // "Fast diagonalization"). Approximate operator (fast diagonalization needs the exact
+    // one): multigrid from 32^3 cells or two densities, else SGS, measured with the exact
+    // operator before it had fast diagonalization (on small single-phase scenes the
+    // multigrid set-up costs more than it saves: Taylor-Green 0.030 against 0.028 s a step).
     long long cells = 1;
     for (int d = 0; d < 3; ++d) cells *= sc.cells[d];
     bool twoPhase = false;
@@ -249,7 +252,8 @@ void readSettings(const Section& top, Scene& sc) {
     const YAML::Node phase = ls && sc.root["level_set"] ? sc.root["level_set"]["phase"] : YAML::Node();
     if (phase && phase.IsScalar() && sc.materials.count(phase.Scalar()))
       twoPhase = sc.materials.at(phase.Scalar()).density != sc.materials.at(sc.fluid).density;
-    P.preconditioner = (cells >= 32 * 32 * 32 || twoPhase) ? "multigrid" : "sgs";
+    if (P.op == ProjectionCfg::Op::Exact) P.preconditioner = "fast_diagonalization";
+    else P.preconditioner = (cells >= 32 * 32 * 32 || twoPhase) ? "multigrid" : "sgs";
     P.preconditionerAuto = true;
   }
   P.damping = p.number("damping", P.damping, {0, 2, true, true});

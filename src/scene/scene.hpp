@@ -47,8 +47,9 @@ struct ProjectionCfg {
   enum class Op { Exact, Approximate } op = Op::Exact;
   double tolerance = 1e-8;     // Belos relative residual
   int maxIterations = 1000;
-  // sgs | jacobi | none | multigrid. Not given (auto): multigrid when the grid has at least
-  // 32^3 cells or two phases of different density, else sgs (scene/load.cpp, why there).
+  // sgs | jacobi | none | multigrid | fast_diagonalization (exact operator only). Not given
+  // (auto): fast_diagonalization with the exact operator; with the approximate one multigrid
+  // from 32^3 cells or two densities, else sgs (scene/load.cpp, why there).
   std::string preconditioner = "sgs";
   bool preconditionerAuto = false; // chosen by that rule, not written in the scene
   double damping = 1.0;        // Ifpack2 relaxation damping factor

@@ -124,8 +124,9 @@ TEST(SceneLoad, DefaultsForAMinimalScene) {
   EXPECT_STREQ(toString(BcType::Outflow), "outflow");
 }
 
-// projection.preconditioner not given: multigrid from 32^3 cells or with two densities,
-// else sgs (the rule and its measurements: src/scene/load.cpp, perf/README.md).
+// projection.preconditioner not given: fast_diagonalization with the exact operator (the
+// default); with the approximate one multigrid from 32^3 cells or with two densities, else
+// sgs (the rule and its measurements: src/scene/load.cpp, perf/README.md).
 TEST(SceneLoad, DefaultPreconditionerBySizeAndPhases) {
   auto pc = [](const std::string& yaml, std::vector<std::string> sets = {}) {
     Scene s = loadSceneFromString(yaml, "pc.yaml", options(std::move(sets)));
@@ -134,12 +135,15 @@ TEST(SceneLoad, DefaultPreconditionerBySizeAndPhases) {
   const std::string twoPhase = "domain: {cells: [8, 8, 8]}\n"
                                "materials: {air: {density: 1}, water: {density: 1000}}\nfluid: air\n"
                                "effects: [navier_stokes, level_set]\nlevel_set: {phase: water}\n";
-  EXPECT_EQ(pc("domain: {cells: [4, 4, 4]}\n"), "sgs auto");
-  EXPECT_EQ(pc("domain: {cells: [32, 32, 31]}\n"), "sgs auto");
-  EXPECT_EQ(pc("domain: {cells: [32, 32, 32]}\n"), "multigrid auto");
-  EXPECT_EQ(pc(twoPhase), "multigrid auto");
-  EXPECT_EQ(pc(twoPhase, {"materials.water.density=1"}), "sgs auto"); // same density: one phase
-  EXPECT_EQ(pc(twoPhase, {"projection.preconditioner=sgs"}), "sgs");    // written: kept
+  const std::string approx = "projection.operator=approximate";
+  EXPECT_EQ(pc("domain: {cells: [4, 4, 4]}\n"), "fast_diagonalization auto");
+  EXPECT_EQ(pc(twoPhase), "fast_diagonalization auto");
+  EXPECT_EQ(pc("domain: {cells: [4, 4, 4]}\n", {approx}), "sgs auto");
+  EXPECT_EQ(pc("domain: {cells: [32, 32, 31]}\n", {approx}), "sgs auto");
+  EXPECT_EQ(pc("domain: {cells: [32, 32, 32]}\n", {approx}), "multigrid auto");
+  EXPECT_EQ(pc(twoPhase, {approx}), "multigrid auto");
+  EXPECT_EQ(pc(twoPhase, {approx, "materials.water.density=1"}), "sgs auto"); // same density: one phase
+  EXPECT_EQ(pc(twoPhase, {"projection.preconditioner=sgs"}), "sgs");          // written: kept
   EXPECT_EQ(pc("domain: {cells: [32, 32, 32]}\nprojection: {preconditioner: jacobi}\n"), "jacobi");
 }
 

@@ -140,10 +140,14 @@ std::string solverSummary(const ProjectionCfg& P) {
     if (P.multigridSmoother == "chebyshev") s += " degree " + std::to_string(P.chebyshevDegree);
     s += ", coarse sweeps " + std::to_string(P.coarseSweeps);
     s += ")";
+  } else if (P.preconditioner == "fast_diagonalization") {
+    s += " (the one-density exact inverse)";
   } else if (P.preconditioner != "none") {
     s += " (" + std::to_string(P.sweeps) + " sweep" + (P.sweeps > 1 ? "s" : "") + ")";
   }
-  if (P.preconditionerAuto) s += " [default: multigrid from 32^3 cells or with two densities, else sgs]";
+  if (P.preconditionerAuto)
+    s += P.op == ProjectionCfg::Op::Exact ? " [default with the exact operator]"
+                                           : " [default: multigrid from 32^3 cells or with two densities, else sgs]";
   char tol[32];
   std::snprintf(tol, sizeof tol, "%g", P.tolerance);
   return s + ", tolerance " + tol + ", at most " + std::to_string(P.maxIterations) + " iterations (then " +
