@@ -148,14 +148,54 @@ void FastDiagonalization::setup(const VecField& coef) {
   auto lamH = Kokkos::create_mirror_view(lam);
   std::vector<double> l[3];
   for (int e = 0; e < 3; ++e) {
+    const int n = n_[e];
     std::vector<double> V;
-    axisFactors(n_[e], g.periodic[e], keep_[e][0], keep_[e][1], V, l[e]);
-    V_[e] = Dense("fd_V", n_[e], n_[e]);
+    axisFactors(n, g.periodic[e], keep_[e][0], keep_[e][1], V, l[e]);
+    // A mirror-symmetric axis (both faces of one kind) has even and odd eigenvectors: fold
+    // it (fdFold) and keep V block diagonal, even modes first, to halve the transform.
+    std::vector<int> order(n);
+    for (int a = 0; a < n; ++a) order[a] = a;
+    nb_[e] = n;
+    if (!g.periodic[e] && keep_[e][0] == keep_[e][1] && n > 1) {
+      std::vector<int> even, odd;
+      bool clean = true;
+      for (int a = 0; a < n && clean; ++a) {
+        double sym = 0, anti = 0, big = 0;
+        for (int q = 0; q < n; ++q) {
+          const double v = V[q + n * a], w = V[n - 1 - q + n * a];
+          sym = std::max(sym, std::abs(v - w));
+          anti = std::max(anti, std::abs(v + w));
+          big = std::max(big, std::abs(v));
+        }
+        if (sym <= 1e-9 * big) even.push_back(a);
+        else if (anti <= 1e-9 * big) odd.push_back(a);
+        else clean = false;
+      }
+      if (clean && (int)even.size() == (n + 1) / 2) {
+        order = even;
+        order.insert(order.end(), odd.begin(), odd.end());
+        nb_[e] = (n + 1) / 2;
+      }
+    }
+    V_[e] = Dense("fd_V", n, n);
     auto vh = Kokkos::create_mirror_view(V_[e]);
-    for (int i = 0; i < n_[e]; ++i)
-      for (int a = 0; a < n_[e]; ++a) vh(i, a) = V[i + n_[e] * a];
+    Kokkos::deep_copy(vh, 0.0);
+    const int h = nb_[e];
+    for (int c = 0; c < n; ++c) {
+      const int a = order[c];
+      if (h == n) {
+        for (int q = 0; q < n; ++q) vh(q, c) = V[q + n * a];
+      } else if (c < h) { // even mode: rows 0 .. h-1 of the folded sums
+        for (int q = 0; q < h; ++q) vh(q, c) = V[q + n * a];
+      } else {            // odd mode: rows h .. of the folded differences
+        for (int q = 0; q < n / 2; ++q) vh(h + q, c) = V[q + n * a];
+      }
+    }
     Kokkos::deep_copy(V_[e], vh);
-    for (int a = 0; a < n_[e]; ++a) lamH(a, e) = l[e][a];
+    std::vector<double> lo(n);
+    for (int c = 0; c < n; ++c) lo[c] = l[e][order[c]];
+    l[e] = lo;
+    for (int a = 0; a < n; ++a) lamH(a, e) = l[e][a];
   }
   Kokkos::deep_copy(lam, lamH);
   // Null modes of A0 (eigenvalue 0 up to round-off) get 0: A's own null space is removed
@@ -172,35 +212,60 @@ void FastDiagonalization::setup(const VecField& coef) {
   fdInverseEigenvalues(inv_, lam, ih[0], ih[1], ih[2], ys_.lo[1], 1e-10 * dmax);
 }
 
-void FastDiagonalization::forwardXY(const Grid3& z1, const Grid3& z2) const {
-  fdTransform<0, false>(z1, z2, V_[0]);
-  fdTransform<1, false>(z2, z1, V_[1]);
-}
-
-void FastDiagonalization::zAndScale(const Grid3& y1, const Grid3& y2) const {
-  fdTransform<2, false>(y1, y2, V_[2]);
-  fdScale(y2, inv_, y1);
-  fdTransform<2, true>(y1, y2, V_[2]);
-}
-
-void FastDiagonalization::backYX(const Grid3& z1, const Grid3& z2) const {
-  fdTransform<1, true>(z1, z2, V_[1]);
-  fdTransform<0, true>(z2, z1, V_[0]);
+// Runs ops one after another from src to dst through the work buffers A and B (each op
+// reads one array and writes another; src and dst may be A or B).
+void FastDiagonalization::chain(const std::vector<Op>& ops, const CGrid3& src, const Grid3& dst, const Grid3& A,
+                                const Grid3& B) const {
+  const double* cur = src.data();
+  CGrid3 in = src;
+  for (size_t i = 0; i < ops.size(); ++i) {
+    Grid3 out = i + 1 == ops.size() ? dst : (cur == A.data() ? B : A);
+    const bool alias = out.data() == cur;
+    if (alias) out = cur == A.data() ? B : A;
+    ops[i](in, out);
+    if (alias) Kokkos::deep_copy(dst, out), out = dst;
+    in = out;
+    cur = out.data();
+  }
   Kokkos::fence();
+}
+
+std::vector<FastDiagonalization::Op> FastDiagonalization::forwardXY() const {
+  std::vector<Op> ops;
+  if (nb_[0] < n_[0]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdFold<0>(i, o); });
+  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<0, false>(i, o, V_[0], nb_[0]); });
+  if (nb_[1] < n_[1]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdFold<1>(i, o); });
+  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<1, false>(i, o, V_[1], nb_[1]); });
+  return ops;
+}
+
+std::vector<FastDiagonalization::Op> FastDiagonalization::zAndScale() const {
+  std::vector<Op> ops;
+  if (nb_[2] < n_[2]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdFold<2>(i, o); });
+  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<2, false>(i, o, V_[2], nb_[2]); });
+  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdScale(i, inv_, o); });
+  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<2, true>(i, o, V_[2], nb_[2]); });
+  if (nb_[2] < n_[2]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdUnfold<2>(i, o); });
+  return ops;
+}
+
+std::vector<FastDiagonalization::Op> FastDiagonalization::backYX() const {
+  std::vector<Op> ops;
+  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<1, true>(i, o, V_[1], nb_[1]); });
+  if (nb_[1] < n_[1]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdUnfold<1>(i, o); });
+  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<0, true>(i, o, V_[0], nb_[0]); });
+  if (nb_[0] < n_[0]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdUnfold<0>(i, o); });
+  return ops;
 }
 
 void FastDiagonalization::apply(const ConstRowVector& r, const RowVector& z) const {
   if (size_ == 1) {
     const CGrid3 in(r.data(), n_[0], n_[1], n_[2]);
     const Grid3 out(z.data(), n_[0], n_[1], n_[2]);
-    fdTransform<0, false>(in, z1_, V_[0]);
-    fdTransform<1, false>(z1_, z2_, V_[1]);
-    fdTransform<2, false>(z2_, z1_, V_[2]);
-    fdScale(z1_, inv_, z2_);
-    fdTransform<2, true>(z2_, z1_, V_[2]);
-    fdTransform<1, true>(z1_, z2_, V_[1]);
-    fdTransform<0, true>(z2_, out, V_[0]);
-    Kokkos::fence();
+    std::vector<Op> ops = forwardXY(), zs = zAndScale(), back = backYX();
+    ops.insert(ops.end(), zs.begin(), zs.end());
+    ops.insert(ops.end(), back.begin(), back.end());
+    chain(ops, in, out, z1_, z2_);
     return;
   }
   // Rows are this rank's block, i fastest: the block layout Redistribute expects.
@@ -209,16 +274,16 @@ void FastDiagonalization::apply(const ConstRowVector& r, const RowVector& z) con
   Kokkos::deep_copy(rh, r);
   toZ_->forward(rowsH_.data(), zh_.data());
   Kokkos::deep_copy(z1_, zh_);
-  forwardXY(z1_, z2_);                      // result in z1_
-  Kokkos::deep_copy(zh_, z1_);
+  chain(forwardXY(), z1_, z2_, z1_, z2_);
+  Kokkos::deep_copy(zh_, z2_);
   zToY_->forward(zh_.data(), yh_.data());
   Kokkos::deep_copy(y1_, yh_);
-  zAndScale(y1_, y2_);                      // result in y2_
+  chain(zAndScale(), y1_, y2_, y1_, y2_);
   Kokkos::deep_copy(yh_, y2_);
   zToY_->backward(yh_.data(), zh_.data());
   Kokkos::deep_copy(z1_, zh_);
-  backYX(z1_, z2_);                         // result in z1_
-  Kokkos::deep_copy(zh_, z1_);
+  chain(backYX(), z1_, z2_, z1_, z2_);
+  Kokkos::deep_copy(zh_, z2_);
   toZ_->backward(zh_.data(), rowsH_.data());
   Kokkos::deep_copy(z, rh);
 }

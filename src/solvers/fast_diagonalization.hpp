@@ -18,6 +18,7 @@
 // three box-to-box moves (src/core/redistribute.hpp) each way: blocks -> z-slabs -> y-slabs.
 #include <mpi.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -45,9 +46,11 @@ class FastDiagonalization {
   bool keptHi(int d) const { return keep_[d][1]; }
 
  private:
-  void forwardXY(const Grid3& z1, const Grid3& z2) const; // z-slab: x then y forward
-  void zAndScale(const Grid3& y1, const Grid3& y2) const; // y-slab: z forward, scale, z back
-  void backYX(const Grid3& z1, const Grid3& z2) const;    // z-slab: y then x back
+  using Op = std::function<void(const CGrid3&, const Grid3&)>;
+  std::vector<Op> forwardXY() const; // z-slab: (fold) x, (fold) y forward
+  std::vector<Op> zAndScale() const; // y-slab: (fold) z forward, scale, z back (unfold)
+  std::vector<Op> backYX() const;    // z-slab: y back (unfold), x back (unfold)
+  void chain(const std::vector<Op>& ops, const CGrid3& src, const Grid3& dst, const Grid3& A, const Grid3& B) const;
   Grid g_;                 // this rank's box (a copy; the communicator is comm_)
   int n_[3];
   bool keep_[3][2] = {{false, false}, {false, false}, {false, false}};
@@ -55,7 +58,8 @@ class FastDiagonalization {
   int rank_ = 0, size_ = 1;
   Box zs_, ys_;            // this rank's z-slab and y-slab
   std::unique_ptr<Redistribute> toZ_, zToY_; // blocks -> z-slabs, z-slabs -> y-slabs
-  Dense V_[3];
+  Dense V_[3];             // per axis: eigenvectors (block diagonal after folding)
+  int nb_[3] = {0, 0, 0};  // first block of V_ (n: not folded)
   Grid3 inv_;              // 1/eigenvalue on this rank's y-slab of modes
   Grid3 z1_, z2_, y1_, y2_; // z-slab and y-slab work arrays (1 rank: the whole grid, z == y)
   Grid3::HostMirror zh_, yh_;
