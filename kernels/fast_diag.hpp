@@ -122,16 +122,14 @@ inline void fdInverseEigenvalues(const Grid3& inv, const Kokkos::View<double* [3
   Kokkos::fence();
 }
 
-// Largest velocity coefficient (any component) over the nodes [b, e) of a face: > 0 when a
-// component is free there (fast_diagonalization.cpp reads the faces' kind off it).
-inline double fdFaceMax(const VecField& coef, const int b[3], const int e[3]) {
-  const VecField c = coef;
+// Largest coefficient of velocity component c over the nodes [b, e) of a face: > 0 when c
+// is free there (fast_diagonalization.cpp reads the faces' kind off it).
+inline double fdFaceMax(const VecField& coef, const int b[3], const int e[3], int c) {
+  const Field f = coef.c[c];
   double m = 0;
   Kokkos::parallel_reduce(
       "fd_face_free", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({b[0], b[1], b[2]}, {e[0], e[1], e[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k, double& mx) {
-        for (int d = 0; d < 3; ++d) mx = mx > c(d, i, j, k) ? mx : c(d, i, j, k);
-      },
+      KOKKOS_LAMBDA(int i, int j, int k, double& mx) { mx = mx > f(i, j, k) ? mx : f(i, j, k); },
       Kokkos::Max<double>(m));
   return m;
 }

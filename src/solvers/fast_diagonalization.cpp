@@ -13,8 +13,9 @@ namespace voigt {
 
 namespace {
 
-// Is any velocity component free at the owned nodes of one face (global node index
-// `g` along axis e), away from the face's edges? Local share; the caller reduces.
+// Which velocity components are free at the owned nodes of one face (global node index
+// `g` along axis e), away from the face's edges? Bit c set: component c free somewhere
+// there. Local share; the caller reduces.
 int faceFree(const VecField& coef, const Grid& G, int e, int g) {
   int b[3], en[3];
   for (int d = 0; d < 3; ++d) {
@@ -31,20 +32,26 @@ int faceFree(const VecField& coef, const Grid& G, int e, int g) {
     en[d] = G.local(d, hi);
     if (en[d] <= b[d]) return 0;
   }
-  const double m = fdFaceMax(coef, b, en);
-  return m > 0 ? 1 : 0;
+  int bits = 0;
+  for (int c = 0; c < 3; ++c)
+    if (fdFaceMax(coef, b, en, c) > 0) bits |= 1 << c;
+  return bits;
 }
 
-// The 1-D factors along one axis of n cells: node rows kept (keepLo/keepHi for the face
-// nodes of a bounded axis), K = D1^T W^-1 D1, E = A1^T W^-1 A1 + K/4 (diagonal), and
-// V, lambda with K V = E V Lambda, V^T E V = I (LAPACK SYEV on E^-1/2 K E^-1/2).
-void axisFactors(int n, bool periodic, bool keepLo, bool keepHi, std::vector<double>& V,
+// The 1-D factors along one axis of n cells: K = D1^T W^-1 D1 over the node rows where the
+// axis' own velocity component is free (kK: the face nodes of a bounded axis, low and high),
+// M = A1^T W^-1 A1 over those where the other two are (kM; a slip wall keeps them, a no-slip
+// wall neither), E = M + K/4 (diagonal: interior nodes are in both sets, and a face node
+// touches one cell), and V, lambda with K V = E V Lambda, V^T E V = I (LAPACK SYEV on
+// E^-1/2 K E^-1/2).
+void axisFactors(int n, bool periodic, const bool kK[2], const bool kM[2], std::vector<double>& V,
                  std::vector<double>& lam) {
   std::vector<double> K(n * n, 0.0), Md(n * n, 0.0);
   const int nodes = periodic ? n : n + 1;
   for (int a = 0; a < nodes; ++a) {
     const bool boundary = !periodic && (a == 0 || a == n);
-    if (boundary && !((a == 0 && keepLo) || (a == n && keepHi))) continue;
+    const bool inK = !boundary || kK[a == 0 ? 0 : 1], inM = !boundary || kM[a == 0 ? 0 : 1];
+    if (!inK && !inM) continue;
     const double w = boundary ? 0.5 : 1.0;
     int cells[2] = {a - 1, a};        // node a sits between cells a - 1 and a
     const double sd[2] = {-1.0, 1.0};
@@ -56,8 +63,8 @@ void axisFactors(int n, bool periodic, bool keepLo, bool keepHi, std::vector<dou
     for (int s = 0; s < 2; ++s)
       for (int t = 0; t < 2; ++t)
         if (ex[s] && ex[t]) {
-          K[cells[s] + n * cells[t]] += sd[s] * sd[t] / w;
-          Md[cells[s] + n * cells[t]] += 0.25 / w;
+          if (inK) K[cells[s] + n * cells[t]] += sd[s] * sd[t] / w;
+          if (inM) Md[cells[s] + n * cells[t]] += 0.25 / w;
         }
   }
   std::vector<double> E(n);
@@ -132,17 +139,19 @@ FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm) : g_(g), 
 
 void FastDiagonalization::setup(const VecField& coef) {
   const Grid& g = g_;
-  int flags[6] = {0, 0, 0, 0, 0, 0};
+  int flags[6] = {0, 0, 0, 0, 0, 0}; // per axis and face: bits of the free components
   for (int e = 0; e < 3; ++e) {
     if (g.periodic[e]) continue;
     flags[2 * e] = faceFree(coef, g, e, 0);
     flags[2 * e + 1] = faceFree(coef, g, e, n_[e]);
   }
-  MPI_Allreduce(MPI_IN_PLACE, flags, 6, MPI_INT, MPI_MAX, comm_);
-  for (int e = 0; e < 3; ++e) {
-    keep_[e][0] = flags[2 * e] != 0;
-    keep_[e][1] = flags[2 * e + 1] != 0;
-  }
+  MPI_Allreduce(MPI_IN_PLACE, flags, 6, MPI_INT, MPI_BOR, comm_);
+  for (int e = 0; e < 3; ++e)
+    for (int side = 0; side < 2; ++side) {
+      const int f = flags[2 * e + side];
+      keepK_[e][side] = (f >> e) & 1;
+      keepM_[e][side] = (f & ~(1 << e)) != 0; // either tangential component free
+    }
   // Every rank builds the 1-D factors (small dense eigenproblems, identical everywhere).
   Kokkos::View<double* [3], MemSpace> lam("fd_lambda", std::max(n_[0], std::max(n_[1], n_[2])));
   auto lamH = Kokkos::create_mirror_view(lam);
@@ -150,13 +159,13 @@ void FastDiagonalization::setup(const VecField& coef) {
   for (int e = 0; e < 3; ++e) {
     const int n = n_[e];
     std::vector<double> V;
-    axisFactors(n, g.periodic[e], keep_[e][0], keep_[e][1], V, l[e]);
+    axisFactors(n, g.periodic[e], keepK_[e], keepM_[e], V, l[e]);
     // A mirror-symmetric axis (both faces of one kind) has even and odd eigenvectors: fold
     // it (fdFold) and keep V block diagonal, even modes first, to halve the transform.
     std::vector<int> order(n);
     for (int a = 0; a < n; ++a) order[a] = a;
     nb_[e] = n;
-    if (!g.periodic[e] && keep_[e][0] == keep_[e][1] && n > 1) {
+    if (!g.periodic[e] && keepK_[e][0] == keepK_[e][1] && keepM_[e][0] == keepM_[e][1] && n > 1) {
       std::vector<int> even, odd;
       bool clean = true;
       for (int a = 0; a < n && clean; ++a) {

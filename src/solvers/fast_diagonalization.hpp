@@ -7,11 +7,11 @@
 // close to the identity except where 1/rho differs from the reference; measured flat in n
 // (perf/README.md, "Fast diagonalization").
 //
-// A0's boundary treatment is read off the coefficient pattern of the faces: a face node
-// row is kept when any velocity component is free on that face (no-slip walls and
-// inflow drop it, outflow keeps it, periodic axes wrap). Exact when every face is of one
-// kind for all components (slip walls are not: then a preconditioner only); obstacles and
-// density jumps are left to CG.
+// A0's boundary treatment is read off the coefficient pattern of the faces: per face, whether
+// the normal and the tangential velocity components are free there (no-slip walls and
+// inflow: neither; slip walls: tangential; outflow: both; periodic axes wrap). Exact at one
+// density in a box with such faces (the two tangential components must agree, else both are
+// taken as free); obstacles and density jumps are left to CG.
 //
 // MPI: the transforms need whole grid lines. The x and y transforms run on z-slabs (each
 // rank a range of k with whole x-y planes), the z transform and the scaling on y-slabs;
@@ -41,9 +41,6 @@ class FastDiagonalization {
   void setup(const VecField& coef);
   // z = A0^+ r on this rank's rows (r: owned rows, i fastest). Collective.
   void apply(const ConstRowVector& r, const RowVector& z) const;
-  // Per axis: node rows kept at the low and high face (for tests and `voigt check`).
-  bool keptLo(int d) const { return keep_[d][0]; }
-  bool keptHi(int d) const { return keep_[d][1]; }
 
  private:
   using Op = std::function<void(const CGrid3&, const Grid3&)>;
@@ -53,7 +50,7 @@ class FastDiagonalization {
   void chain(const std::vector<Op>& ops, const CGrid3& src, const Grid3& dst, const Grid3& A, const Grid3& B) const;
   Grid g_;                 // this rank's box (a copy; the communicator is comm_)
   int n_[3];
-  bool keep_[3][2] = {{false, false}, {false, false}, {false, false}};
+  bool keepK_[3][2] = {}, keepM_[3][2] = {}; // face node rows kept: normal / tangential components
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
   Box zs_, ys_;            // this rank's z-slab and y-slab

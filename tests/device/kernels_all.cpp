@@ -198,7 +198,7 @@ void fastDiagonalization(const Grid& g, Fields& f) {
   fdScale(b, inv, a);
   put("fdScale", sumAbs3(a));
   const int lo[3] = {g.ng, g.ng + 1, g.ng}, hi[3] = {g.ng + 1, g.ng + n1, g.ng + n2};
-  put("fdFaceMax", fdFaceMax(f.coef, lo, hi));
+  put("fdFaceMax", fdFaceMax(f.coef, lo, hi, 1));
   RowVector x("x", n0), y("y", n0);
   Kokkos::deep_copy(x, Kokkos::subview(a, Kokkos::ALL(), 1, 2));
   Kokkos::deep_copy(y, Kokkos::subview(b, Kokkos::ALL(), 2, 1));

@@ -46,6 +46,7 @@ struct CoefSpec {
   int outflowFace = -1;        // face (2*axis + side) whose nodes stay free
   bool variable = false;       // smooth variable density, component-dependent
   int obsLo = -1, obsHi = -1;  // obstacle: global nodes in [obsLo, obsHi]^3 prescribed
+  bool slip = false;           // walls prescribe the normal component only
 };
 
 // coef_d = 1/rho at free nodes, 0 on wall faces and in the obstacle. Filled
@@ -57,18 +58,19 @@ inline VecField makeCoef(const Case& c, CoefSpec s) {
       "coef", c.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
         const int l[3] = {i, j, k};
         int gi[3];
-        bool wall = false, obs = true;
+        bool wall = false, obs = true, wallD[3] = {false, false, false};
         for (int d = 0; d < 3; ++d) {
           gi[d] = G.glob(d, l[d]);
           if (G.per[d]) gi[d] = ((gi[d] % G.n[d]) + G.n[d]) % G.n[d];
-          if (!G.per[d] && gi[d] == 0 && s.outflowFace != 2 * d) wall = true;
-          if (!G.per[d] && gi[d] == G.n[d] && s.outflowFace != 2 * d + 1) wall = true;
+          if (!G.per[d] && gi[d] == 0 && s.outflowFace != 2 * d) wallD[d] = true;
+          if (!G.per[d] && gi[d] == G.n[d] && s.outflowFace != 2 * d + 1) wallD[d] = true;
+          wall = wall || wallD[d];
           obs = obs && gi[d] >= s.obsLo && gi[d] <= s.obsHi;
         }
         const double x = gi[0] / double(G.n[0]), y = gi[1] / double(G.n[1]), z = gi[2] / double(G.n[2]);
         const double rho = s.variable ? 1 + 0.5 * std::sin(2 * kPi * x) * std::cos(2 * kPi * (y + z)) : 1.0;
         for (int d = 0; d < 3; ++d)
-          coef.c[d](i, j, k) = (wall || obs) ? 0.0 : (s.variable ? 1 + 0.2 * d : 1.0) / rho;
+          coef.c[d](i, j, k) = ((s.slip ? wallD[d] : wall) || obs) ? 0.0 : (s.variable ? 1 + 0.2 * d : 1.0) / rho;
       });
   Kokkos::fence();
   return coef;

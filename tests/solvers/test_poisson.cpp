@@ -277,17 +277,19 @@ TEST(Poisson, ExactMultigridDensityRatio1000) {
 }
 
 // (h) Fast diagonalization (src/solvers/fast_diagonalization.hpp) is the exact inverse of the
-// exact operator at one density when every face is of one kind for all components: CG
-// then converges in one iteration (two allowed for round-off at tolerance 1e-10), on no-slip
-// walls and on walls + an outflow face + a periodic axis with anisotropic h (test (c)'s
-// cases), at 1 and 2 ranks (2 ranks: the gather to rank 0). At density ratio 1000 (test
+// exact operator at one density in a box: CG then converges in one iteration (two allowed
+// for round-off at tolerance 1e-10), on no-slip walls, on walls + an outflow face + a
+// periodic axis with anisotropic h (test (c)'s cases) and on slip walls, at 1 and 2 ranks
+// (2 ranks: the slab transposes). At density ratio 1000 (test
 // (g)'s sharp water block) it stays a preconditioner: measured 20 iterations at 1 and 2
 // ranks (2026-12-04; multigrid: 92, test (g)); 40 leaves room for platforms. It needs the
 // exact operator.
 TEST(Poisson, FastDiagonalization) {
-  for (int cs = 0; cs < 2; ++cs) {
+  for (int cs = 0; cs < 3; ++cs) {
     Case c({16, 12, 14}, {false, false, cs == 1}, {1, 0.9, 1.2});
-    auto coef = makeCoef(c, {cs == 1 ? 3 : -1, false}); // one density
+    CoefSpec spec{cs == 1 ? 3 : -1, false}; // one density
+    spec.slip = cs == 2;
+    auto coef = makeCoef(c, spec);
     auto ustar = makeVelocity(c, coef);
     auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-10, "fast_diagonalization"));
     const double dt = 0.05;
