@@ -239,14 +239,9 @@ TEST(Poisson, Preconditioners) {
   EXPECT_THROW(makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-8, "ilu")), std::invalid_argument);
 }
 
-// (g) Exact operator at density ratio 1000 (the dam break's water block, rho 1000 in the
-// corner x < 1/4, y < 1/2, z < 1/2 of a closed 32^3 box, air rho 1 elsewhere, sharp jump):
-// multigrid with the checkerboard near-null vector converges to 1e-8. Bound: measured 92 and
-// 94 iterations at 1 and 2 ranks (2026-12-03); with MueLu's default near-null space (constant
-// only) the same solve took 347 and 359 (SGS: 497, 660); 150 leaves room for platforms
-// and still fails the old set-up.
-TEST(Poisson, ExactMultigridDensityRatio1000) {
-  Case c({32, 32, 32});
+// The dam break's water block on a closed 32^3 box: rho 1000 in the corner x < 1/4, y < 1/2,
+// z < 1/2 (node coordinates), air rho 1 elsewhere, a sharp jump. Tests (g) and (h).
+VecField waterBlockCoef(const Case& c) {
   auto coef = makeCoef(c, {});
   GridGeom G(c.g);
   Kokkos::parallel_for(
@@ -256,6 +251,18 @@ TEST(Poisson, ExactMultigridDensityRatio1000) {
         for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) /= rho;
       });
   Kokkos::fence();
+  return coef;
+}
+
+// (g) Exact operator at density ratio 1000 (the dam break's water block, rho 1000 in the
+// corner x < 1/4, y < 1/2, z < 1/2 of a closed 32^3 box, air rho 1 elsewhere, sharp jump):
+// multigrid with the checkerboard near-null vector converges to 1e-8. Bound: measured 92 and
+// 94 iterations at 1 and 2 ranks (2026-12-03); with MueLu's default near-null space (constant
+// only) the same solve took 347 and 359 (SGS: 497, 660); 150 leaves room for platforms
+// and still fails the old set-up.
+TEST(Poisson, ExactMultigridDensityRatio1000) {
+  Case c({32, 32, 32});
+  auto coef = waterBlockCoef(c);
   auto ustar = makeVelocity(c, coef);
   for (const char* pc : {"multigrid", "sgs"}) {
     auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-8, pc));
@@ -303,15 +310,7 @@ TEST(Poisson, FastDiagonalization) {
                   p.st.relResidual, du / p.divStar);
   }
   Case c({32, 32, 32});
-  auto coef = makeCoef(c, {});
-  GridGeom G(c.g);
-  Kokkos::parallel_for(
-      "water_block", c.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double x = G.glob(0, i) / 32.0, y = G.glob(1, j) / 32.0, z = G.glob(2, k) / 32.0;
-        const double rho = (x <= 0.25 && y <= 0.5 && z <= 0.5) ? 1000.0 : 1.0;
-        for (int d = 0; d < 3; ++d) coef.c[d](i, j, k) /= rho;
-      });
-  Kokkos::fence();
+  auto coef = waterBlockCoef(c);
   auto ustar = makeVelocity(c, coef);
   auto s = makePoissonSolver(c.g, cfgOf(PoissonSettings::Op::Exact, 1e-8, "fast_diagonalization"));
   auto p = project(c, *s, coef, ustar, 0.1);
