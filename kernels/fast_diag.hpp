@@ -38,7 +38,8 @@ template <int Axis, bool Back>
 inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int nb) {
   const int n0 = (int)in.extent(0), n1 = (int)in.extent(1), n2 = (int)in.extent(2);
   const int m = (int)V.extent(0);
-  if (Axis != 0 && !kOnDevice) {
+#if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
+  if (Axis != 0 && !kOnDevice) { // host backends only: not compiled as device code
     const int slabs = Axis == 1 ? n2 : n1;
     Kokkos::parallel_for(
         "fd_transform_slab", Kokkos::RangePolicy<ExecSpace>(0, slabs), KOKKOS_LAMBDA(int s) {
@@ -57,6 +58,7 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
         });
     return;
   }
+#endif
   const Range3 all{{0, 0, 0}, {n0, n1, n2}};
   for_each3("fd_transform", all, KOKKOS_LAMBDA(int i, int j, int k) {
     const int idx[3] = {i, j, k};

@@ -4,6 +4,8 @@
 #include <Kokkos_Core.hpp>
 
 #include <algorithm>
+#include <climits>
+#include <stdexcept>
 #include <utility>
 
 namespace voigt {
@@ -50,12 +52,15 @@ Redistribute::Redistribute(MPI_Comm comm, const std::vector<Box>& src, const std
     const Box r = intersect(src[p], myDst_);
     sends_.push_back({s, p});
     recvs_.push_back({r, p});
+    if (s.size() > INT_MAX || r.size() > INT_MAX) throw std::overflow_error("Redistribute: a part of over 2^31 cells");
     sendCount_[p] = (int)s.size();
     recvCount_[p] = (int)r.size();
   }
   sendDispl_.assign(size, 0);
   recvDispl_.assign(size, 0);
   for (int p = 1; p < size; ++p) {
+    if (1LL * sendDispl_[p - 1] + sendCount_[p - 1] > INT_MAX || 1LL * recvDispl_[p - 1] + recvCount_[p - 1] > INT_MAX)
+      throw std::overflow_error("Redistribute: more than 2^31 cells a rank (MPI int counts)");
     sendDispl_[p] = sendDispl_[p - 1] + sendCount_[p - 1];
     recvDispl_[p] = recvDispl_[p - 1] + recvCount_[p - 1];
   }

@@ -71,7 +71,10 @@ void axisFactors(int n, bool periodic, const bool kK[2], const bool kM[2], std::
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const double e = Md[i + n * j] + 0.25 * K[i + n * j];
-      if (i == j) E[i] = e;
+      if (i == j) {
+        if (!(e > 0)) throw std::invalid_argument("fast diagonalization: a cell with no free node along an axis");
+        E[i] = e;
+      }
       else if (std::abs(e) > 1e-12) throw std::logic_error("fast diagonalization: E is not diagonal");
     }
   std::vector<double> C(n * n);

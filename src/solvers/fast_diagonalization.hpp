@@ -11,7 +11,8 @@
 // the normal and the tangential velocity components are free there (no-slip walls and
 // inflow: neither; slip walls: tangential; outflow: both; periodic axes wrap). Exact at one
 // density in a box with such faces (the two tangential components must agree, else both are
-// taken as free); obstacles and density jumps are left to CG.
+// taken as free); obstacles and density jumps are left to CG. A face is sampled away from
+// its edges: a wall with an outflow patch reads as free, and then A0 is a preconditioner only.
 //
 // MPI: the transforms need whole grid lines. The x and y transforms run on z-slabs (each
 // rank a range of k with whole x-y planes), the z transform and the scaling on y-slabs;

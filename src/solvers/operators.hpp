@@ -43,17 +43,20 @@ struct ProjectedPrec final : Operator {
 };
 
 // The fast-diagonalization preconditioner (fast_diagonalization.hpp) as a Tpetra operator:
-// Y = alpha A0^+ X + beta Y, identity rows (cells inside obstacles) left at 0.
+// Y = alpha Z A0^+ Z X + beta Y, Z zeroing the identity rows (cells inside obstacles) on both
+// sides, so that it stays symmetric whatever X holds there.
 struct FastDiagPrec final : Operator {
   FastDiagPrec(Teuchos::RCP<const Map> m, const FastDiagonalization* fd, RowFlags ident, int nrows)
-      : map(m), fd(fd), ident(ident), nrows(nrows), t("fd_prec_t", nrows) {}
+      : map(m), fd(fd), ident(ident), nrows(nrows), t("fd_prec_t", nrows), xz("fd_prec_x", nrows) {}
   Teuchos::RCP<const Map> getDomainMap() const override { return map; }
   Teuchos::RCP<const Map> getRangeMap() const override { return map; }
   void apply(const MV& X, MV& Y, Teuchos::ETransp, Scalar alpha, Scalar beta) const override {
     for (size_t c = 0; c < Y.getNumVectors(); ++c) {
       ConstRowVector x = Kokkos::subview(X.getLocalViewDevice(Tpetra::Access::ReadOnly), Kokkos::ALL(), c);
       RowVector y = Kokkos::subview(Y.getLocalViewDevice(Tpetra::Access::ReadWrite), Kokkos::ALL(), c);
-      fd->apply(x, t);
+      Kokkos::deep_copy(xz, x);
+      zeroIdentityRows(xz, ident, nrows);
+      fd->apply(xz, t);
       zeroIdentityRows(t, ident, nrows);
       fdAxpby(alpha, t, beta, y, nrows);
     }
@@ -62,7 +65,7 @@ struct FastDiagPrec final : Operator {
   const FastDiagonalization* fd;
   RowFlags ident;
   int nrows;
-  RowVector t;
+  RowVector t, xz;
 };
 
 } // namespace voigt::tpetra

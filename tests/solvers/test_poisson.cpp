@@ -286,14 +286,15 @@ TEST(Poisson, ExactMultigridDensityRatio1000) {
 // (h) Fast diagonalization (src/solvers/fast_diagonalization.hpp) is the exact inverse of the
 // exact operator at one density in a box: CG then converges in one iteration (two allowed
 // for round-off at tolerance 1e-10), on no-slip walls, on walls + an outflow face + a
-// periodic axis with anisotropic h (test (c)'s cases) and on slip walls, at 1 and 2 ranks
-// (2 ranks: the slab transposes). At density ratio 1000 (test
+// periodic axis with anisotropic h (test (c)'s cases), on slip walls and with odd extents,
+// at 1 and 2 ranks (2 ranks: the slab transposes). At density ratio 1000 (test
 // (g)'s sharp water block) it stays a preconditioner: measured 20 iterations at 1 and 2
 // ranks (2026-12-04; multigrid: 92, test (g)); 40 leaves room for platforms. It needs the
 // exact operator.
 TEST(Poisson, FastDiagonalization) {
-  for (int cs = 0; cs < 3; ++cs) {
-    Case c({16, 12, 14}, {false, false, cs == 1}, {1, 0.9, 1.2});
+  for (int cs = 0; cs < 4; ++cs) { // case 3: odd extents (the folds' middle row)
+    Case c(cs == 3 ? std::array<int, 3>{15, 13, 11} : std::array<int, 3>{16, 12, 14}, {false, false, cs == 1},
+           {1, 0.9, 1.2});
     CoefSpec spec{cs == 1 ? 3 : -1, false}; // one density
     spec.slip = cs == 2;
     auto coef = makeCoef(c, spec);
