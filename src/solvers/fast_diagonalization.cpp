@@ -222,6 +222,13 @@ void FastDiagonalization::setup(const VecField& coef) {
         dmax = std::max(dmax, ih[0] * l0 * m1 * m2 + ih[1] * m0 * l1 * m2 + ih[2] * m0 * m1 * l2);
       }
   fdInverseEigenvalues(inv_, lam, ih[0], ih[1], ih[2], ys_.lo[1], 1e-10 * dmax);
+  // The passes of one application (they depend on which axes are folded): built here, once.
+  opsXY_ = forwardXY();
+  opsZ_ = zAndScale();
+  opsYX_ = backYX();
+  opsAll_ = opsXY_;
+  opsAll_.insert(opsAll_.end(), opsZ_.begin(), opsZ_.end());
+  opsAll_.insert(opsAll_.end(), opsYX_.begin(), opsYX_.end());
 }
 
 // Runs ops one after another from src to dst through the work buffers A and B (each op
@@ -274,10 +281,7 @@ void FastDiagonalization::apply(const ConstRowVector& r, const RowVector& z) con
   if (size_ == 1) {
     const CGrid3 in(r.data(), n_[0], n_[1], n_[2]);
     const Grid3 out(z.data(), n_[0], n_[1], n_[2]);
-    std::vector<Op> ops = forwardXY(), zs = zAndScale(), back = backYX();
-    ops.insert(ops.end(), zs.begin(), zs.end());
-    ops.insert(ops.end(), back.begin(), back.end());
-    chain(ops, in, out, z1_, z2_);
+    chain(opsAll_, in, out, z1_, z2_);
     return;
   }
   // Rows are this rank's block, i fastest: the block layout Redistribute expects.
@@ -286,15 +290,15 @@ void FastDiagonalization::apply(const ConstRowVector& r, const RowVector& z) con
   Kokkos::deep_copy(rh, r);
   toZ_->forward(rowsH_.data(), zh_.data());
   Kokkos::deep_copy(z1_, zh_);
-  chain(forwardXY(), z1_, z2_, z1_, z2_);
+  chain(opsXY_, z1_, z2_, z1_, z2_);
   Kokkos::deep_copy(zh_, z2_);
   zToY_->forward(zh_.data(), yh_.data());
   Kokkos::deep_copy(y1_, yh_);
-  chain(zAndScale(), y1_, y2_, y1_, y2_);
+  chain(opsZ_, y1_, y2_, y1_, y2_);
   Kokkos::deep_copy(yh_, y2_);
   zToY_->backward(yh_.data(), zh_.data());
   Kokkos::deep_copy(z1_, zh_);
-  chain(backYX(), z1_, z2_, z1_, z2_);
+  chain(opsYX_, z1_, z2_, z1_, z2_);
   Kokkos::deep_copy(zh_, z2_);
   toZ_->backward(zh_.data(), rowsH_.data());
   Kokkos::deep_copy(z, rh);

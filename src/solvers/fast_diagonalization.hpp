@@ -49,6 +49,7 @@ class FastDiagonalization {
   std::vector<Op> zAndScale() const; // y-slab: (fold) z forward, scale, z back (unfold)
   std::vector<Op> backYX() const;    // z-slab: y back (unfold), x back (unfold)
   void chain(const std::vector<Op>& ops, const CGrid3& src, const Grid3& dst, const Grid3& A, const Grid3& B) const;
+  std::vector<Op> opsXY_, opsZ_, opsYX_, opsAll_; // the three parts and all in order (setup)
   Grid g_;                 // this rank's box (a copy; the communicator is comm_)
   int n_[3];
   bool keepK_[3][2] = {}, keepM_[3][2] = {}; // face node rows kept: normal / tangential components
