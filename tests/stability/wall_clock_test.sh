@@ -81,10 +81,12 @@ elif [ "$MODE" = interval ]; then
   files=$(find "$dir" -name 'checkpoint_*.h5' | sort)
   [ "$(echo "$files" | wc -l)" -eq "$written" ] || fail "$written written, files: $files"
   # Counted: one per W of wall time (the loop runs from after set-up), plus the last.
+  # The interval counts from the end of a write, so the lower bound allows each write
+  # (and the step that crosses W) 0.6 W: CI at -j2 with 2 ranks saw 6 in 3.25 s.
   python3 - "$wall" "$W" "$written" <<'PY' || fail "$written checkpoints in $wall s at one per $W s"
 import sys
 wall, w, n = float(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3])
-sys.exit(not (n >= 3 and wall / w - 2 <= n <= wall / w + 1.5))
+sys.exit(not (n >= 3 and wall / (1.6 * w) - 2 <= n <= wall / w + 1.5))
 PY
   # Spaced: each at least W after the one before (file times, less a write's own time).
   # shellcheck disable=SC2086
