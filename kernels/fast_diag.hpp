@@ -33,7 +33,8 @@ KOKKOS_INLINE_FUNCTION double at(const CGrid3& v, int i, int j, int k, int q) {
 // Host backends, Axis 1 and 2: one slab (a j or a k) at a time, out(:, a) += w in(:, q) over
 // whole x lines: the slab is reused from cache n times and the x loop vectorises (the
 // point-wise form walked to a new slab for every output line: 1.3 GFLOP/s along z at 64^3,
-// perf_kernels FastDiagTransform). Device backends and Axis 0: one output per thread.
+// perf_kernels FastDiagTransform); Axis 0 as an axpy per x line. Device backends: one output
+// per thread.
 template <int Axis, bool Back>
 inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int nb) {
   const int n0 = (int)in.extent(0), n1 = (int)in.extent(1), n2 = (int)in.extent(2);
@@ -54,6 +55,35 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
 #pragma GCC ivdep
               for (int i = 0; i < n0; ++i) o[i] += w * x[i];
             }
+          }
+        });
+    return;
+  }
+#endif
+#if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
+  if (Axis == 0 && !kOnDevice) { // host backends, x lines: o(r) += W(r, t) x(t), an axpy
+    // over contiguous outputs that vectorises (the point-wise form is a dot product, which
+    // the compiler may not reassociate); same summation order, so the same bits.
+    Dense W = V; // back: column a of V
+    if (!Back) { // forward: W(a, q) = V(q, a)
+      W = Dense(Kokkos::view_alloc(Kokkos::WithoutInitializing, "fd_VT"), m, m);
+      Kokkos::parallel_for(
+          "fd_transpose", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {m, m}),
+          KOKKOS_LAMBDA(int q, int a) { W(a, q) = V(q, a); });
+    }
+    Kokkos::parallel_for(
+        "fd_transform_line", Kokkos::RangePolicy<ExecSpace>(0, n1 * n2), KOKKOS_LAMBDA(int l) {
+          const int j = l % n1, k = l / n1;
+          double* o = &out(0, j, k);
+          const double* x = &in(0, j, k);
+#pragma GCC ivdep
+          for (int r = 0; r < m; ++r) o[r] = 0;
+          for (int t = 0; t < m; ++t) {
+            const int rb = t < nb ? 0 : nb, re = t < nb ? nb : m;
+            const double w = x[t];
+            const double* col = &W(0, t);
+#pragma GCC ivdep
+            for (int r = rb; r < re; ++r) o[r] += col[r] * w;
           }
         });
     return;
