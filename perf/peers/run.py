@@ -33,7 +33,7 @@ VARIANTS = {
     # name: (description, how the scene is obtained)
     "scene": "perf/scenes/dam_break.yaml as written: approximate (7-point) operator, multigrid, tolerance 1e-6",
     "defaults": "the same scene without its projection section: Voigt's defaults, exact (27-point) "
-                "operator, multigrid (chosen automatically: two phases), tolerance 1e-8",
+                "operator, fast diagonalization (the exact operator's default), tolerance 1e-8",
 }
 log = launch.log
 
