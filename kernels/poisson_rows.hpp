@@ -90,18 +90,32 @@ struct ArraySum {
   }
 };
 
-// s = M^T v over the local rows (identity rows left out).
-struct Analyze : ArraySum {
+// s = M^T v over the local rows (identity rows left out), one (j, k) line of owned cells
+// at a time (rows are consecutive along i): the families of axes 1 and 2 are one basis
+// column each along the line, with signs that alternate with i, so they take an
+// alternating sum; the constant a plain one; the axis-0 family one column per i. No cell
+// decoding (two divisions) per row: analyze + synthesize 8.1 -> 2.7 % of an exact-operator
+// falling-block run (perf record, 75^3, 3 steps).
+struct AnalyzeLines : ArraySum {
   NullBasis B;
   RowVector v;
   RowFlags ident;
-  KOKKOS_INLINE_FUNCTION void operator()(int r, value_type s) const {
-    if (ident(r)) return;
-    int idx[4];
-    double sg[4];
-    B.at(r, idx, sg);
-    const double x = v(r);
-    for (int m = 0; m < 4; ++m) s[idx[m]] += sg[m] * x;
+  KOKKOS_INLINE_FUNCTION void operator()(int j, int k, value_type s) const {
+    const CellRows& rw = B.rw;
+    const int r0 = rw.n0 * (j + rw.n1 * k);
+    const int gi = B.G.glob(0, rw.ng), g1 = B.G.glob(1, rw.ng + j), g2 = B.G.glob(2, rw.ng + k);
+    const double s1 = ((g1 + g2) & 1) ? -1.0 : 1.0;
+    double sum = 0, alt = 0; // alt: sum of (-1)^g0 x
+    for (int i = 0; i < rw.n0; ++i) {
+      const double x = ident(r0 + i) ? 0.0 : v(r0 + i);
+      const int g0 = gi + i;
+      sum += x;
+      alt += (g0 & 1) ? -x : x;
+      s[B.off0 + g0] += s1 * x;
+    }
+    s[0] += sum;
+    s[B.off1 + g1] += (g2 & 1) ? -alt : alt; // sign (-1)^(g2 + g0)
+    s[B.off2 + g2] += (g1 & 1) ? -alt : alt; // sign (-1)^(g0 + g1)
   }
 };
 
@@ -130,8 +144,10 @@ inline double rowSum(const RowVector& v, const RowFlags& ident, int nrows) {
 
 // s[0..nb) = M^T v over this rank's rows (s is host memory of nb doubles).
 inline void nullAnalyze(const NullBasis& B, int nb, const RowVector& v, const RowFlags& ident, int nrows, double* s) {
-  rows_detail::Analyze f{{(unsigned)nb}, B, v, ident};
-  Kokkos::parallel_reduce("nullspace_analyze", Kokkos::RangePolicy<ExecSpace>(0, nrows), f, s);
+  (void)nrows; // nrows = n0 n1 n2 of B.rw
+  using Lines = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+  rows_detail::AnalyzeLines f{{(unsigned)nb}, B, v, ident};
+  Kokkos::parallel_reduce("nullspace_analyze", Lines({0, 0}, {B.rw.n1, nrows / (B.rw.n0 * B.rw.n1)}), f, s);
 }
 
 // v = c0 (or v -= c0) on the rows that are not identity rows (0 there when assigning).
@@ -147,13 +163,22 @@ inline void nullSynthesizeConstant(double c0, const RowVector& v, const RowFlags
 // v = M c (or v -= M c), c: the nb basis coefficients on the device.
 inline void nullSynthesize(const NullBasis& B, const Kokkos::View<double*, MemSpace>& c, const RowVector& v,
                            const RowFlags& ident, int nrows, bool subtract) {
+  // A (j, k) line at a time (see AnalyzeLines); the same arithmetic as the row form
+  // c(0) + sg1 c(idx1) + sg2 c(idx2) + sg3 c(idx3), the signs split exactly.
+  using Lines = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+  const int n0 = B.rw.n0, n1 = B.rw.n1;
   Kokkos::parallel_for(
-      "nullspace_synthesize", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r) {
-        int idx[4];
-        double sg[4];
-        B.at(r, idx, sg);
-        const double w = ident(r) ? 0.0 : c(0) + sg[1] * c(idx[1]) + sg[2] * c(idx[2]) + sg[3] * c(idx[3]);
-        v(r) = subtract ? v(r) - w : w;
+      "nullspace_synthesize", Lines({0, 0}, {n1, nrows / (n0 * n1)}), KOKKOS_LAMBDA(int j, int k) {
+        const int r0 = n0 * (j + n1 * k);
+        const int gi = B.G.glob(0, B.rw.ng), g1 = B.G.glob(1, B.rw.ng + j), g2 = B.G.glob(2, B.rw.ng + k);
+        const double c0 = c(0);
+        const double s1 = ((g1 + g2) & 1) ? -1.0 : 1.0;
+        const double ca = ((g2 & 1) ? -1.0 : 1.0) * c(B.off1 + g1), cb = ((g1 & 1) ? -1.0 : 1.0) * c(B.off2 + g2);
+        for (int i = 0; i < n0; ++i) {
+          const double e = ((gi + i) & 1) ? -1.0 : 1.0;
+          const double w = ident(r0 + i) ? 0.0 : c0 + s1 * c(B.off0 + gi + i) + e * ca + e * cb;
+          v(r0 + i) = subtract ? v(r0 + i) - w : w;
+        }
       });
   Kokkos::fence();
 }
