@@ -95,6 +95,11 @@ class TpetraPoisson final : public PoissonSolver {
         // phases race unless told otherwise: the hierarchy, and so every iterate, would differ
         // from run to run (a restart not bit-identical). The Serial node ignores it.
         p.set("aggregation: deterministic", true);
+        // Not enough: MueLu 13.2's Kokkos tentative prolongator (TentativePFactory_kokkos_def.hpp,
+        // createAgg2RowMap) lists each aggregate's rows with atomic_fetch_add, so their order, and
+        // the round-off of each aggregate's QR, follows the thread schedule. On host backends use
+        // the classic factories, as MueLu does by itself on the Serial node (no change there).
+        if (!kOnDevice) p.set("use kokkos refactor", false);
         auto& cp = p.sublist("coarse: params");
         cp.set("relaxation: type", "Symmetric Gauss-Seidel");
         cp.set("relaxation: sweeps", cfg_.coarseSweeps);
