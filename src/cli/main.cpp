@@ -62,6 +62,7 @@ int info() {
     std::cout << "kokkos execution space: " << Kokkos::DefaultExecutionSpace::name()
               << " (concurrency " << Kokkos::DefaultExecutionSpace().concurrency() << ")\n";
     std::cout << "mpi ranks: " << size << "\n";
+    std::cout << "instruction set: " << VOIGT_BUILD_ISA << " (CMake VOIGT_ARCH)\n";
     std::cout << "effects:";
     for (auto& e : effectRegistry()) std::cout << " " << e.name;
     std::cout << "\n";
