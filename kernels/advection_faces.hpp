@@ -184,11 +184,12 @@ inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const Ve
         for_each3("node_advection_zero", nodes, KOKKOS_LAMBDA(int i, int j, int k) { r(i, j, k) = 0; });
       addNodeAdvection(g, v.c[c], v, r, nodes, limiter);
     }
-    return;
-  }
+  } else // (not `return`: nvcc would call the loop below unreachable)
 #endif
-  VOIGT_UNROLL
-  for (int c = 0; c < 3; ++c) addNodeAdvectionFaces(g, v.c[c], v, rhs.c[c], nodes, limiter, scratch, assign);
+  {
+    VOIGT_UNROLL
+    for (int c = 0; c < 3; ++c) addNodeAdvectionFaces(g, v.c[c], v, rhs.c[c], nodes, limiter, scratch, assign);
+  }
 }
 
 // One cell field advected by the node velocity (addCellAdvection of
