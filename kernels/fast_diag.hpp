@@ -59,8 +59,6 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
         });
     return;
   }
-#endif
-#if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
   if (Axis == 0 && !kOnDevice) { // host backends, x lines: o(r) += W(r, t) x(t), an axpy
     // over contiguous outputs that vectorises (the point-wise form is a dot product, which
     // the compiler may not reassociate); same summation order, so the same bits.

@@ -90,6 +90,9 @@ struct ArraySum {
   }
 };
 
+// The (j, k) lines of owned cells, j fastest (rows run i fastest, then j, then k).
+using Lines = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+
 // s = M^T v over the local rows (identity rows left out), one (j, k) line of owned cells
 // at a time (rows are consecutive along i): the families of axes 1 and 2 are one basis
 // column each along the line, with signs that alternate with i, so they take an
@@ -144,8 +147,7 @@ inline double rowSum(const RowVector& v, const RowFlags& ident, int nrows) {
 
 // s[0..nb) = M^T v over this rank's rows (s is host memory of nb doubles).
 inline void nullAnalyze(const NullBasis& B, int nb, const RowVector& v, const RowFlags& ident, int nrows, double* s) {
-  (void)nrows; // nrows = n0 n1 n2 of B.rw
-  using Lines = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+  using rows_detail::Lines; // nrows = n0 n1 n2 of B.rw
   rows_detail::AnalyzeLines f{{(unsigned)nb}, B, v, ident};
   Kokkos::parallel_reduce("nullspace_analyze", Lines({0, 0}, {B.rw.n1, nrows / (B.rw.n0 * B.rw.n1)}), f, s);
 }
@@ -165,7 +167,7 @@ inline void nullSynthesize(const NullBasis& B, const Kokkos::View<double*, MemSp
                            const RowFlags& ident, int nrows, bool subtract) {
   // A (j, k) line at a time (see AnalyzeLines); the same arithmetic as the row form
   // c(0) + sg1 c(idx1) + sg2 c(idx2) + sg3 c(idx3), the signs split exactly.
-  using Lines = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+  using rows_detail::Lines;
   const int n0 = B.rw.n0, n1 = B.rw.n1;
   Kokkos::parallel_for(
       "nullspace_synthesize", Lines({0, 0}, {n1, nrows / (n0 * n1)}), KOKKOS_LAMBDA(int j, int k) {
