@@ -71,29 +71,63 @@ inline void applyFixed(const IntField& mask, const VecField& val, const VecField
 // for every point of the face plane r (r's extent along d is 1): ghost lb + dir m gets
 // the interior node lb - dir m reflected evenly (odd = 0), oddly about the boundary value
 // (odd = 1: 2 u_b - u_i), or u_b itself (outflow).
-inline void mirrorNodeGhosts(const Field& f, Range3 r, int d, int lb, int dir, int ng, int ext, int odd,
-                             bool outflow, const char* name = "node_ghosts") {
-  for_each3(name, r, KOKKOS_LAMBDA(int i, int j, int k) {
-    int idx[3] = {i, j, k};
-    auto at = [&](int l) -> double& {
-      idx[d] = l;
-      return f(idx[0], idx[1], idx[2]);
-    };
-    const double ub = at(lb);
+// The axis is a template parameter (mirrorNodeGhosts dispatches on it): with d known
+// at compile time the x-fastest loop of for_each3 sees contiguous rows on the y and z
+// faces and vectorises (a run-time d made every access an indexed select).
+template <int D>
+inline void mirrorNodeGhostsAxis(const Field& f, Range3 r, int lb, int dir, int ng, int ext, int odd, bool outflow,
+                                 const char* name) {
+  const auto point = KOKKOS_LAMBDA(int i, int j, int k) {
+    const double ub = f(D == 0 ? lb : i, D == 1 ? lb : j, D == 2 ? lb : k);
     for (int m = 1; m <= ng; ++m) {
       const int lg = lb + dir * m, li = lb - dir * m;
       if (lg < 0 || lg >= ext) continue;
-      const double ui = at(li);
-      at(lg) = outflow ? ub : (odd ? 2 * ub - ui : ui);
+      const double ui = f(D == 0 ? li : i, D == 1 ? li : j, D == 2 ? li : k);
+      f(D == 0 ? lg : i, D == 1 ? lg : j, D == 2 ? lg : k) = outflow ? ub : (odd ? 2 * ub - ui : ui);
     }
-  });
+  };
+  if constexpr (D == 0 && !kOnDevice) { // one task per z plane (see mirrorCellGhostsAxis)
+    const int b1 = r.b[1], e1 = r.e[1], i0 = r.b[0];
+    Kokkos::parallel_for(
+        name, Kokkos::RangePolicy<ExecSpace>(r.b[2], r.e[2]), KOKKOS_LAMBDA(int k) {
+          for (int j = b1; j < e1; ++j) point(i0, j, k);
+        });
+    return;
+  }
+  for_each3(name, r, point);
+}
+
+inline void mirrorNodeGhosts(const Field& f, Range3 r, int d, int lb, int dir, int ng, int ext, int odd,
+                             bool outflow, const char* name = "node_ghosts") {
+  if (d == 0) mirrorNodeGhostsAxis<0>(f, r, lb, dir, ng, ext, odd, outflow, name);
+  else if (d == 1) mirrorNodeGhostsAxis<1>(f, r, lb, dir, ng, ext, odd, outflow, name);
+  else mirrorNodeGhostsAxis<2>(f, r, lb, dir, ng, ext, odd, outflow, name);
 }
 
 // Cell ghosts in r mirror the owned cells along d: f(idx) = f(M - idx along d).
-inline void mirrorCellGhosts(const Field& f, Range3 r, int d, int M) {
+// The axis is a template parameter for the reason given at mirrorNodeGhostsAxis.
+template <int D>
+inline void mirrorCellGhostsAxis(const Field& f, Range3 r, int M) {
+  if constexpr (D == 0 && !kOnDevice) {
+    // An x face is ng cells thick: one task per z plane, so the short i loops do not
+    // each pay a task's overhead (for_each3 runs one task per (j, k) row).
+    const int b0 = r.b[0], e0 = r.e[0], b1 = r.b[1], e1 = r.e[1];
+    Kokkos::parallel_for(
+        "cell_ghosts", Kokkos::RangePolicy<ExecSpace>(r.b[2], r.e[2]), KOKKOS_LAMBDA(int k) {
+          for (int j = b1; j < e1; ++j)
+            for (int i = b0; i < e0; ++i) f(i, j, k) = f(M - i, j, k);
+        });
+    return;
+  }
   for_each3("cell_ghosts", r, KOKKOS_LAMBDA(int i, int j, int k) {
-    f(i, j, k) = f(d == 0 ? M - i : i, d == 1 ? M - j : j, d == 2 ? M - k : k);
+    f(i, j, k) = f(D == 0 ? M - i : i, D == 1 ? M - j : j, D == 2 ? M - k : k);
   });
+}
+
+inline void mirrorCellGhosts(const Field& f, Range3 r, int d, int M) {
+  if (d == 0) mirrorCellGhostsAxis<0>(f, r, M);
+  else if (d == 1) mirrorCellGhostsAxis<1>(f, r, M);
+  else mirrorCellGhostsAxis<2>(f, r, M);
 }
 
 } // namespace voigt

@@ -68,10 +68,14 @@ inline void for_each3(const char* name, const Range3& r, const F& f) {
     return;
   }
 #endif
-  using Policy2 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
-  const int b0 = r.b[0], e0 = r.e[0];
+  // The (j, k) rows as one flat range (j fastest): a 2-D MDRange with 1x1 tiles paid
+  // ~20 ns per row, most of the work on faces two cells thick (ghost fills).
+  const int b0 = r.b[0], e0 = r.e[0], b1 = r.b[1], b2 = r.b[2], nj = r.e[1] - r.b[1];
+  const long long rows = 1LL * nj * (r.e[2] - r.b[2]);
+  if (rows <= 0 || e0 <= b0) return;
   Kokkos::parallel_for(
-      name, Policy2({r.b[1], r.b[2]}, {r.e[1], r.e[2]}, {1, 1}), KOKKOS_LAMBDA(int j, int k) VOIGT_FLATTEN {
+      name, Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long long>>(0, rows), KOKKOS_LAMBDA(long long q) VOIGT_FLATTEN {
+        const int j = b1 + int(q % nj), k = b2 + int(q / nj);
         // No loop-carried dependence (the contract above): ivdep lets the
         // compiler vectorise without run-time alias checks between views.
 #pragma GCC ivdep

@@ -7,8 +7,10 @@ if(CMAKE_SCRIPT_MODE_FILE)
   cmake_minimum_required(VERSION 3.20) # script mode: IN_LIST, CMAKE_CURRENT_FUNCTION_LIST_DIR
 endif()
 # withLimiter, limiterNamed: host-side choices; scalarFacesXYZ, momentumStage: the shared
-# bodies of launchers that are called (addNodeAdvectionFaces..., momentumStage1/2).
-set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage flatSym)
+# bodies of launchers that are called (addNodeAdvectionFaces..., momentumStage1/2);
+# mirror*GhostsAxis: the per-axis bodies that mirror*Ghosts instantiates for all three axes.
+set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage flatSym mirrorNodeGhostsAxis
+    mirrorCellGhostsAxis)
 function(voigt_check_launchers mode)
   get_filename_component(_root "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../.." ABSOLUTE)
   file(GLOB _headers "${_root}/kernels/*.hpp")
