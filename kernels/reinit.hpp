@@ -75,7 +75,7 @@ using voigt::Unpack; // core/index_space.hpp
 
 KOKKOS_INLINE_FUNCTION double minmod(double a, double b) { // branch-free: this is the hot loop
   // std::copysign: Kokkos 3.4 has none (nvcc maps std::copysign to the device builtin).
-  return (std::copysign(0.5, a) + std::copysign(0.5, b)) * km::fmin(km::fabs(a), km::fabs(b));
+  return (std::copysign(0.5, a) + std::copysign(0.5, b)) * minOf(km::fabs(a), km::fabs(b));
 }
 
 // Second-order ENO one-sided differences at p0 along one axis.
@@ -92,8 +92,8 @@ KOKKOS_INLINE_FUNCTION void eno2(double pm2, double pm1, double p0, double pp1, 
 // s > 0 takes max(D-, 0)^2 and min(D+, 0)^2, s < 0 the mirror image.
 KOKKOS_INLINE_FUNCTION double godunov2(double s, double dm, double dp) {
   const double sg = s > 0 ? 1.0 : -1.0;
-  const double a = km::fmax(sg * dm, 0.0), b = km::fmax(-sg * dp, 0.0);
-  return km::fmax(a * a, b * b);
+  const double a = maxOf(sg * dm, 0.0), b = maxOf(-sg * dp, 0.0);
+  return maxOf(a * a, b * b);
 }
 
 // Compact list of owned cells with |psi0| < band (parallel_scan); returns the count.
@@ -161,13 +161,13 @@ inline void prepareBand(const Grid& g, const BandViews& b, int n, const Field& p
           inside = inside && in1;
           if (in1 && km::fabs(far[d][0]) < band && km::fabs(far[d][1]) < band) eno |= kEno << d;
           double del = km::fabs(p - m) * 0.5;
-          del = km::fmax(del, km::fmax(km::fabs(p - p0), km::fabs(p0 - m)));
+          del = maxOf(del, maxOf(km::fabs(p - p0), km::fabs(p0 - m)));
           g2 += (del / hd[d]) * (del / hd[d]);
         }
         b.flags(q) = (iface ? kInterface : 0) | (!iface && inside ? kInterior : 0) | eno;
         // Used only next to the interface, where it is ~ psi0; clamped for safety.
         const double D = g2 > 0 ? p0 / km::sqrt(g2) : p0;
-        b.dist(q) = km::fmax(-band, km::fmin(band, D));
+        b.dist(q) = maxOf(-band, minOf(band, D));
         double coef = 0;
         if (constraint && fd(p) > 0) {
           const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};

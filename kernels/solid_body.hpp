@@ -111,7 +111,7 @@ inline SolidAcc solidMoments(const Grid& g, const Field& psi, const VecField& u,
           for (int q = 0; q < tg.n; ++q)
             if (tg.t[q].kind <= 2 && p <= 0 && targetDistance(tg.t[q], x) < 0) stale = true;
           if (!stale)
-            for (int q = 0; q < tg.n; ++q) a.m[q] = Kokkos::Experimental::fmin(a.m[q], targetDistance(tg.t[q], x) - p);
+            for (int q = 0; q < tg.n; ++q) a.m[q] = minOf(a.m[q], targetDistance(tg.t[q], x) - p);
         }
         const double w = smoothedHeaviside(p, kappa);
         if (w <= 0) return;

@@ -17,6 +17,12 @@ namespace km = Kokkos;
 #else
 namespace km = Kokkos::Experimental;
 #endif
+// max/min inline: the same bits as std::fmax/fmin for every pair of non-NaN doubles,
+// signed zeros included (glibc's fmax is maxsd, which returns b on ties: checked), but
+// no call through the PLT, which GCC emits for fmax/fmin without -ffinite-math-only
+// (15 calls per cell in the re-initialisation stage). They differ only when b is NaN.
+KOKKOS_INLINE_FUNCTION double maxOf(double a, double b) { return a > b ? a : b; }
+KOKKOS_INLINE_FUNCTION double minOf(double a, double b) { return a < b ? a : b; }
 using MemSpace = ExecSpace::memory_space;
 using Field = Kokkos::View<double***, Kokkos::LayoutLeft, MemSpace>;
 using IntField = Kokkos::View<int***, Kokkos::LayoutLeft, MemSpace>;
