@@ -244,25 +244,56 @@ inline double kineticEnergy(const Grid& g, const VecField& u, const Field& rhoCe
   return globalSum(g, e);
 }
 
+// listBox's running bounds: one reduction decodes each cell once for all three axes.
+struct ListBoxAcc {
+  int lo[3], hi[3];
+};
+struct ListBoxReducer {
+  using reducer = ListBoxReducer;
+  using value_type = ListBoxAcc;
+  using result_view_type = Kokkos::View<value_type, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+  result_view_type value;
+  ListBoxReducer(value_type& v) : value(&v) {}
+  KOKKOS_INLINE_FUNCTION void join(value_type& d, const value_type& s) const {
+    for (int q = 0; q < 3; ++q) {
+      d.lo[q] = s.lo[q] < d.lo[q] ? s.lo[q] : d.lo[q];
+      d.hi[q] = s.hi[q] > d.hi[q] ? s.hi[q] : d.hi[q];
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void join(volatile value_type& d, const volatile value_type& s) const {
+    for (int q = 0; q < 3; ++q) {
+      d.lo[q] = s.lo[q] < d.lo[q] ? s.lo[q] : d.lo[q];
+      d.hi[q] = s.hi[q] > d.hi[q] ? s.hi[q] : d.hi[q];
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void init(value_type& v) const {
+    for (int q = 0; q < 3; ++q) v.lo[q] = INT_MAX, v.hi[q] = INT_MIN;
+  }
+  KOKKOS_INLINE_FUNCTION value_type& reference() const { return *value.data(); }
+  result_view_type view() const { return value; }
+  KOKKOS_INLINE_FUNCTION bool references_scalar() const { return true; }
+};
+
 // Bounding box (local indices, [b, e)) of the first n listed cells; empty range if n == 0.
 inline Range3 listBox(const Grid& g, const IntList& cell, int n) {
   Range3 box{{0, 0, 0}, {0, 0, 0}};
   if (n == 0) return box;
   const Unpack up{g.ext[0], g.ext[1]};
-  VOIGT_UNROLL
+  ListBoxAcc acc;
+  Kokkos::parallel_reduce(
+      "list_box", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int p, ListBoxAcc& v) {
+        int ijk[3];
+        up(cell(p), ijk[0], ijk[1], ijk[2]);
+        for (int d = 0; d < 3; ++d) {
+          v.lo[d] = ijk[d] < v.lo[d] ? ijk[d] : v.lo[d];
+          v.hi[d] = ijk[d] > v.hi[d] ? ijk[d] : v.hi[d];
+        }
+      },
+      ListBoxReducer(acc));
   for (int d = 0; d < 3; ++d) {
-    Kokkos::MinMaxScalar<int> mm;
-    Kokkos::parallel_reduce(
-        "list_box", Kokkos::RangePolicy<ExecSpace>(0, n),
-        KOKKOS_LAMBDA(int p, Kokkos::MinMaxScalar<int>& v) {
-          int ijk[3];
-          up(cell(p), ijk[0], ijk[1], ijk[2]);
-          if (ijk[d] < v.min_val) v.min_val = ijk[d];
-          if (ijk[d] > v.max_val) v.max_val = ijk[d];
-        },
-        Kokkos::MinMax<int>(mm));
-    box.b[d] = mm.min_val;
-    box.e[d] = mm.max_val + 1;
+    box.b[d] = acc.lo[d];
+    box.e[d] = acc.hi[d] + 1;
   }
   return box;
 }

@@ -22,6 +22,7 @@ void Elasticity::buildLists(State& st) {
   std::swap(owned_, prev_);
   nPrev_ = nOwned_;
   nOwned_ = elastic::buildActiveList(g, psi, threshold_, cellRange(g), owned_);
+  ownedBox_ = elastic::listBox(g, owned_, nOwned_);
   // Owned cells and one ghost layer: the stress divergence at the owned nodes
   // reads the cells around them (navier_stokes fills tau on cellRange(g, 1)).
   nGrown_ = elastic::buildActiveList(g, psi, threshold_, cellRange(g, 1), grown_);
@@ -35,7 +36,7 @@ void Elasticity::advect(State& st) {
   Field psi = st.fields.scalar(field::psi);
   VecField on = st.fields.vector("solid_stress_old"), os = st.fields.vector("solid_stress_old_shear");
   const Field o[6] = {on.c[0], on.c[1], on.c[2], os.c[0], os.c[1], os.c[2]};
-  const Range3 box = elastic::listBox(g, owned_, nOwned_);
+  const Range3 box = ownedBox_;
   const bool any = nOwned_ > 0;
   const double dt = st.dt;
   st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
@@ -64,7 +65,7 @@ void Elasticity::extend(State& st) {
   // Only the fluid-side cells change; both buffers hold the others' values.
   const int nSide = extension::fluidSide(psi, st.grid, owned_, nOwned_, below_, side_cells_);
   extension::copySolidSide(st.grid, psi, t, b, owned_, nOwned_, below_);
-  const Range3 reads = grown(elastic::listBox(st.grid, owned_, nOwned_), 1); // the sweeps read the band box and 1 layer
+  const Range3 reads = grown(ownedBox_, 1); // the sweeps read the band box and 1 layer
   for (int s = 0; s < sweeps_; ++s) {
     const SymTensorField& from = s % 2 == 0 ? t : b;
     const SymTensorField& to = s % 2 == 0 ? b : t;

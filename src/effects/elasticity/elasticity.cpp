@@ -158,6 +158,7 @@ void Elasticity::loadState(const nlohmann::json& j) {
 // rebuilt from the stress. The grown list is rebuilt from psi before use.
 void Elasticity::restored(State& st) {
   nOwned_ = elastic::buildNonzeroList(st.grid, solidStressField(st.fields), owned_);
+  ownedBox_ = elastic::listBox(st.grid, owned_, nOwned_);
   nGrown_ = elastic::buildActiveList(st.grid, st.fields.scalar(field::psi), threshold_, cellRange(st.grid, 1), grown_);
   refreshStress(st);
 }
