@@ -244,34 +244,36 @@ inline double kineticEnergy(const Grid& g, const VecField& u, const Field& rhoCe
   return globalSum(g, e);
 }
 
-// listBox's running bounds: one reduction decodes each cell once for all three axes.
-struct ListBoxAcc {
-  int lo[3], hi[3];
-};
-struct ListBoxReducer {
-  using reducer = ListBoxReducer;
-  using value_type = ListBoxAcc;
+// A Kokkos reducer for a plain struct Acc of running values: Acc::init(v) sets the
+// identity, Acc::join(d, s) merges s into d (a template, for Kokkos's volatile overloads).
+template <class Acc>
+struct AccReducer {
+  using reducer = AccReducer;
+  using value_type = Acc;
   using result_view_type = Kokkos::View<value_type, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
   result_view_type value;
-  ListBoxReducer(value_type& v) : value(&v) {}
-  KOKKOS_INLINE_FUNCTION void join(value_type& d, const value_type& s) const {
-    for (int q = 0; q < 3; ++q) {
-      d.lo[q] = s.lo[q] < d.lo[q] ? s.lo[q] : d.lo[q];
-      d.hi[q] = s.hi[q] > d.hi[q] ? s.hi[q] : d.hi[q];
-    }
-  }
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type& d, const volatile value_type& s) const {
-    for (int q = 0; q < 3; ++q) {
-      d.lo[q] = s.lo[q] < d.lo[q] ? s.lo[q] : d.lo[q];
-      d.hi[q] = s.hi[q] > d.hi[q] ? s.hi[q] : d.hi[q];
-    }
-  }
-  KOKKOS_INLINE_FUNCTION void init(value_type& v) const {
-    for (int q = 0; q < 3; ++q) v.lo[q] = INT_MAX, v.hi[q] = INT_MIN;
-  }
+  AccReducer(value_type& v) : value(&v) {}
+  KOKKOS_INLINE_FUNCTION void join(value_type& d, const value_type& s) const { Acc::join(d, s); }
+  KOKKOS_INLINE_FUNCTION void join(volatile value_type& d, const volatile value_type& s) const { Acc::join(d, s); }
+  KOKKOS_INLINE_FUNCTION void init(value_type& v) const { Acc::init(v); }
   KOKKOS_INLINE_FUNCTION value_type& reference() const { return *value.data(); }
   result_view_type view() const { return value; }
   KOKKOS_INLINE_FUNCTION bool references_scalar() const { return true; }
+};
+
+// listBox's running bounds: one reduction decodes each cell once for all three axes.
+struct ListBoxAcc {
+  int lo[3], hi[3];
+  template <class D, class S>
+  KOKKOS_INLINE_FUNCTION static void join(D& d, const S& s) {
+    for (int q = 0; q < 3; ++q) {
+      d.lo[q] = s.lo[q] < d.lo[q] ? s.lo[q] : d.lo[q];
+      d.hi[q] = s.hi[q] > d.hi[q] ? s.hi[q] : d.hi[q];
+    }
+  }
+  KOKKOS_INLINE_FUNCTION static void init(ListBoxAcc& v) {
+    for (int q = 0; q < 3; ++q) v.lo[q] = INT_MAX, v.hi[q] = INT_MIN;
+  }
 };
 
 // Bounding box (local indices, [b, e)) of the first n listed cells; empty range if n == 0.
@@ -290,7 +292,7 @@ inline Range3 listBox(const Grid& g, const IntList& cell, int n) {
           v.hi[d] = ijk[d] > v.hi[d] ? ijk[d] : v.hi[d];
         }
       },
-      ListBoxReducer(acc));
+      AccReducer<ListBoxAcc>(acc));
   for (int d = 0; d < 3; ++d) {
     box.b[d] = acc.lo[d];
     box.e[d] = acc.hi[d] + 1;

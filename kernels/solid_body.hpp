@@ -13,6 +13,7 @@
 #include "core/grid.hpp"
 #include "core/index_space.hpp"
 #include "kernels/heaviside.hpp"
+#include "kernels/reductions.hpp" // AccReducer
 
 namespace voigt {
 
@@ -22,30 +23,17 @@ constexpr int kSolidTargets = 32; // obstacles + up to 6 domain faces
 struct SolidAcc {
   double s[kSolidSums];
   double m[kSolidTargets];
-};
-
-struct SolidReducer {
-  using reducer = SolidReducer;
-  using value_type = SolidAcc;
-  using result_view_type = Kokkos::View<value_type, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
-  result_view_type value;
-  SolidReducer(value_type& v) : value(&v) {}
-  KOKKOS_INLINE_FUNCTION void join(value_type& d, const value_type& s) const {
+  template <class D, class S>
+  KOKKOS_INLINE_FUNCTION static void join(D& d, const S& s) {
     for (int q = 0; q < kSolidSums; ++q) d.s[q] += s.s[q];
     for (int q = 0; q < kSolidTargets; ++q) d.m[q] = s.m[q] < d.m[q] ? s.m[q] : d.m[q];
   }
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type& d, const volatile value_type& s) const {
-    for (int q = 0; q < kSolidSums; ++q) d.s[q] += s.s[q];
-    for (int q = 0; q < kSolidTargets; ++q) d.m[q] = s.m[q] < d.m[q] ? s.m[q] : d.m[q];
-  }
-  KOKKOS_INLINE_FUNCTION void init(value_type& v) const {
+  KOKKOS_INLINE_FUNCTION static void init(SolidAcc& v) {
     for (int q = 0; q < kSolidSums; ++q) v.s[q] = 0;
     for (int q = 0; q < kSolidTargets; ++q) v.m[q] = 1e300;
   }
-  KOKKOS_INLINE_FUNCTION value_type& reference() const { return *value.data(); }
-  result_view_type view() const { return value; }
-  KOKKOS_INLINE_FUNCTION bool references_scalar() const { return true; }
 };
+using SolidReducer = AccReducer<SolidAcc>; // kernels/reductions.hpp
 
 // A surface the solid may touch. kind: 0 sphere (center c, radius r), 1
 // cylinder (infinite, as the obstacle mask), 2 box (lo, hi), 3 low face and
