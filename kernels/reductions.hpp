@@ -285,12 +285,9 @@ inline Range3 listBox(const Grid& g, const IntList& cell, int n) {
   Kokkos::parallel_reduce(
       "list_box", Kokkos::RangePolicy<ExecSpace>(0, n),
       KOKKOS_LAMBDA(int p, ListBoxAcc& v) {
-        int ijk[3];
-        up(cell(p), ijk[0], ijk[1], ijk[2]);
-        for (int d = 0; d < 3; ++d) {
-          v.lo[d] = ijk[d] < v.lo[d] ? ijk[d] : v.lo[d];
-          v.hi[d] = ijk[d] > v.hi[d] ? ijk[d] : v.hi[d];
-        }
+        int i, j, k;
+        up(cell(p), i, j, k);
+        ListBoxAcc::join(v, ListBoxAcc{{i, j, k}, {i, j, k}});
       },
       AccReducer<ListBoxAcc>(acc));
   for (int d = 0; d < 3; ++d) {
