@@ -191,9 +191,12 @@ std::string Simulation::writeCheckpoint(const FieldStore& fields, const nlohmann
 
 // The state before a step, for a blow-up's "last good state": refreshed every
 // last_good_interval steps (and at the first step of a run).
+bool Simulation::snapshotDue() const {
+  return ck_.lastGood && checkpointer_ && (!haveBackup_ || st_.step % ck_.lastGoodInterval == 0);
+}
+
 void Simulation::snapshot() {
-  if (!ck_.lastGood || !checkpointer_) return;
-  if (haveBackup_ && st_.step % ck_.lastGoodInterval != 0) return;
+  if (!snapshotDue()) return;
   for (auto& n : st_.fields.allocatedNames()) {
     const auto& d = st_.fields.decls().at(n);
     if (d.isInt) Kokkos::deep_copy(backup_.integer(n), st_.fields.integer(n));

@@ -55,6 +55,15 @@ std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& na
 }
 } // namespace
 
+bool Simulation::probesDue() const {
+  return !opt_.outDir.empty() && probes_ && !scene_.probes.empty() && probes_->due(st_.t);
+}
+
+bool Simulation::fieldOutputDue() const {
+  return !opt_.outDir.empty() && scene_.output.enabled && scene_.output.interval > 0 &&
+         st_.t >= nextOutput_ - 1e-12 * scene_.time.endTime;
+}
+
 void Simulation::output(bool force) {
   if (opt_.outDir.empty()) return;
   if (probes_ && !scene_.probes.empty() && (force || probes_->due(st_.t))) {

@@ -137,8 +137,17 @@ RunResult Simulation::run() {
     const auto capped = st_.counters.find("poisson_unconverged");
     r.poissonCapped = capped == st_.counters.end() ? 0 : long(capped->second);
   };
+  // Each step checks the state fields (StepEngine::checkFinite); the derived ones that
+  // are about to be written or copied are checked first, once a step.
+  const std::vector<std::string> derived = engine_.fieldsWhere(true);
+  std::vector<std::string> probeDerived; // the derived fields that probes sample
+  for (auto& p : scene_.probes)
+    for (auto& f : p.fields)
+      if (std::count(derived.begin(), derived.end(), f) && !std::count(probeDerived.begin(), probeDerived.end(), f))
+        probeDerived.push_back(f);
   // A blow-up: write the last good state, the summary, and stop (collective).
   auto blowUp = [&](std::string msg, bool currentIsGood) {
+    if (currentIsGood && checkpointer_ && !engine_.nonFinite(derived).empty()) currentIsGood = false;
     if (checkpointer_) {
       std::string path;
       if (currentIsGood) path = writeCheckpoint(st_.fields, checkpointMeta());
@@ -152,6 +161,17 @@ RunResult Simulation::run() {
     finish();
     writeSummary(r, msg);
     throw BlowUp(msg);
+  };
+  long verified = -1;
+  auto verify = [&](const std::vector<std::string>& names) {
+    if (names.empty()) return;
+    const std::string m = engine_.nonFinite(names);
+    if (!m.empty()) blowUp(m, false);
+  };
+  auto verifyAll = [&] {
+    if (verified == st_.step) return;
+    verify(derived);
+    verified = st_.step;
   };
   while (st_.t < tEnd * (1 - 1e-12) && (maxSteps < 0 || st_.step < maxSteps)) {
     // One collective per step: a signal on any rank, and rank 0's clock decides the
@@ -176,7 +196,10 @@ RunResult Simulation::run() {
       r.wallLimit = true;
       break;
     }
-    if (flags[2] && lastCheckpointStep_ != st_.step) r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    if (flags[2] && lastCheckpointStep_ != st_.step) {
+      verifyAll();
+      r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    }
     else if (flags[2]) lastCheckpointWall_ = MPI_Wtime(); // restarted from this very step
     const double stepStart = MPI_Wtime();
     const double dt = engine_.chooseDt(tEnd, scene_.output.interval > 0 ? nextOutput_ : tEnd);
@@ -187,6 +210,7 @@ RunResult Simulation::run() {
       blowUp(os.str(), true);
     }
     dtReasons_[StepEngine::unclipped(st_.dtReason)] += 1;
+    if (snapshotDue()) verifyAll();
     snapshot();
     try {
       advance(dt);
@@ -194,10 +218,14 @@ RunResult Simulation::run() {
       blowUp(e.what(), false);
     }
     writeTimeSeries();
+    if (fieldOutputDue()) verifyAll();
+    else if (probesDue()) verify(probeDerived);
     output(false);
     wall.stepTook(MPI_Wtime() - stepStart);
-    if (ck_.interval > 0 && st_.step % ck_.interval == 0 && checkpointer_)
+    if (ck_.interval > 0 && st_.step % ck_.interval == 0 && checkpointer_) {
+      verifyAll();
       r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    }
     if (tty || (batch && MPI_Wtime() - lastProgress >= kBatchProgressSeconds)) {
       const double now = MPI_Wtime(), el = now - w0, eta = el / (st_.t - t0) * (tEnd - st_.t);
       fprintf(stderr, "%sstep %ld  t = %.5g  dt = %.3g (%s)  %.0f s  ETA %.0f s%s", tty ? "\r" : "", st_.step, st_.t,
@@ -208,7 +236,10 @@ RunResult Simulation::run() {
   if (tty) fprintf(stderr, "\n");
   finish();
   if (r.signal || r.wallLimit) {
-    if (checkpointer_ && lastCheckpointStep_ != st_.step) r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    if (checkpointer_ && lastCheckpointStep_ != st_.step) {
+      verifyAll();
+      r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
+    }
     else if (checkpointer_ && r.checkpoint.empty()) r.checkpoint = findCheckpoint(g.comm, opt_.outDir);
     finish(); // the wall time with the checkpoint
     writeSummary(r, r.wallWarning ? std::string("signal SIGUSR1")
@@ -219,6 +250,7 @@ RunResult Simulation::run() {
   }
   // A run with checkpoints ends with one, so it can be extended (--restart --end-time ...);
   // before the final forced output, which a longer run would not have made.
+  if (checkpointer_) verifyAll(); // the final checkpoint and output
   if ((ck_.interval > 0 || ck_.wallInterval > 0) && checkpointer_ && lastCheckpointStep_ != st_.step)
     r.checkpoint = writeCheckpoint(st_.fields, checkpointMeta());
   if (scene_.output.interval == 0 || outputIndex_ == 0 || nextOutput_ - scene_.output.interval < st_.t - 1e-12)

@@ -111,6 +111,9 @@ class Simulation {
 
  private:
   void output(bool force);
+  bool fieldOutputDue() const; // output(false) would write fields now
+  bool probesDue() const;      // ... or sample probes
+  bool snapshotDue() const; // snapshot() would copy the fields now
   std::string fastestNode() const;
   void writeTimeSeries();
   void writeTimeSeriesRow(std::ostream& os, bool header);

@@ -13,9 +13,17 @@ void FieldStore::declare(const std::string& name, Centring c, int components, co
     if (it->second.centring != c || it->second.components != components || it->second.isInt != isInt)
       throw std::logic_error("field '" + name + "' declared twice with different shapes (" + owner +
                              ", " + it->second.owner + ")");
+    it->second.derived = false; // state for this effect: state
     return;
   }
   decls_[name] = Decl{c, components, isInt, owner};
+}
+
+void FieldStore::declareDerived(const std::string& name, Centring c, int components, const std::string& owner) {
+  const bool seen = declared(name);
+  const bool wasDerived = seen && decls_.at(name).derived;
+  declare(name, c, components, owner);
+  decls_[name].derived = seen ? wasDerived : true;
 }
 
 long long FieldStore::bytes(const Grid& g) const {

@@ -45,10 +45,16 @@ class FieldStore {
     int components; // 1 scalar, 3 vector
     bool isInt;
     std::string owner; // effect that asked for it first
+    // Recomputed from the state within every step before anything reads it (scratch,
+    // coefficients, diagnostics): the per-step blow-up check leaves it out, the check
+    // before anything is written includes it (StepEngine::checkFinite). A field that
+    // any effect declares as state is state.
+    bool derived = false;
   };
 
   void declare(const std::string& name, Centring c, int components, const std::string& owner,
                bool isInt = false);
+  void declareDerived(const std::string& name, Centring c, int components, const std::string& owner);
   bool declared(const std::string& name) const { return decls_.count(name) > 0; }
   const std::map<std::string, Decl>& decls() const { return decls_; }
   // Bytes all declared fields take on this rank.

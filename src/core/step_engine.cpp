@@ -80,7 +80,22 @@ void StepEngine::advanceSteps(long n, double dt, const Each& each) {
   }
 }
 
+std::vector<std::string> StepEngine::fieldsWhere(bool derived) const {
+  std::vector<std::string> out;
+  for (auto& name : st_.fields.allocatedNames()) {
+    const auto& d = st_.fields.decls().at(name);
+    if (!d.isInt && d.derived == derived) out.push_back(name);
+  }
+  return out;
+}
+
 void StepEngine::checkFinite() const {
+  if (stateNames_.empty()) stateNames_ = fieldsWhere(false);
+  const std::string m = nonFinite(stateNames_);
+  if (!m.empty()) throw BlowUp(m);
+}
+
+std::string StepEngine::nonFinite(const std::vector<std::string>& names) const {
   const Grid& g = st_.grid;
   // Every real field component with its owned range, enumerated once for both paths.
   struct Component {
@@ -91,8 +106,8 @@ void StepEngine::checkFinite() const {
   std::vector<Component> comps;
   std::vector<Field> arrays;
   std::vector<Range3> ranges;
-  for (auto& name : st_.fields.allocatedNames()) {
-    auto d = st_.fields.decls().at(name);
+  for (auto& name : names) {
+    const auto& d = st_.fields.decls().at(name);
     if (d.isInt) continue;
     const bool cell = d.centring == Centring::Cell;
     for (int c = 0; c < d.components; ++c) {
@@ -103,12 +118,15 @@ void StepEngine::checkFinite() const {
   }
   // Fast path, every step: one fused count (tables rebuilt when an array changes) and one
   // Allreduce. Only a blow-up pays for the search below (a reduction and Allreduces each).
-  bool same = scan_ && int(arrays.size()) == scan_->n;
-  for (size_t q = 0; same && q < arrays.size(); ++q) same = arrays[q].data() == scan_->host[q];
-  if (!same) scan_ = std::make_shared<ArrayBoxes>(arrayBoxes(arrays, ranges));
-  long long local = countNonFinite(*scan_), total = 0;
+  std::string key;
+  for (auto& n : names) key += n + "\n";
+  auto& scan = scans_[key];
+  bool same = scan && int(arrays.size()) == scan->n;
+  for (size_t q = 0; same && q < arrays.size(); ++q) same = arrays[q].data() == scan->host[q];
+  if (!same) scan = std::make_shared<ArrayBoxes>(arrayBoxes(arrays, ranges));
+  long long local = countNonFinite(*scan), total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
-  if (total == 0) return;
+  if (total == 0) return "";
   std::vector<std::string> bad; // every non-finite field component, with its first point
   const long long nx = g.n[0] + 1, ny = g.n[1] + 1;
   for (size_t q = 0; q < arrays.size(); ++q) {
@@ -134,12 +152,12 @@ void StepEngine::checkFinite() const {
     os << " = " << v << " at " << (k.cell ? "cell" : "node") << " (" << gi << ", " << gj << ", " << gk << ")";
     bad.push_back(os.str());
   }
-  if (bad.empty()) return;
+  if (bad.empty()) return "";
   std::ostringstream os;
   os << "blow-up: non-finite values after step " << st_.step << ", t = " << st_.t << " (dt = " << st_.dt
      << ", limited by " << st_.dtReason << "): ";
   for (size_t i = 0; i < bad.size(); ++i) os << (i ? "; " : "") << bad[i];
-  throw BlowUp(os.str());
+  return os.str();
 }
 
 } // namespace voigt

@@ -9,11 +9,12 @@
 //   with 1e-9 relative slack so that no sliver step is left.
 //
 // A step runs the stages of kStepStages in order, advances t and the step count,
-// checks every field for non-finite values (one fused count and one Allreduce; BlowUp names
-// the first bad point of each field), honours State::stopRequest, then the after-step
+// checks the state fields for non-finite values (one fused count and one Allreduce; BlowUp
+// names the first bad point of each field), honours State::stopRequest, then the after-step
 // hooks run (diagnostics of the finished step, e.g. the kinetic energy).
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -62,8 +63,17 @@ class StepEngine {
   // n steps of one size dt (a uniformly sampled record, e.g. for a Prony fit).
   void advanceSteps(long n, double dt, const Each& each = {});
   // Throws BlowUp naming every non-finite field component and its first point
-  // in global (k, j, i) order (the same point whatever the decomposition).
+  // in global (k, j, i) order (the same point whatever the decomposition). Each
+  // step checks the state fields only: a derived field is recomputed from them
+  // within a step, so a non-finite value there reaches the state by the next step
+  // (FieldStore::Decl::derived). Whoever writes or copies fields (output, probes,
+  // checkpoints, the last good state) first checks the derived ones it takes.
   void checkFinite() const;
+  // What checkFinite would throw for these fields (integer ones skipped); "" when
+  // every value is finite. Collective.
+  std::string nonFinite(const std::vector<std::string>& names) const;
+  // The allocated real fields that are derived (true) or state (false).
+  std::vector<std::string> fieldsWhere(bool derived) const;
 
  private:
   State& st_;
@@ -71,7 +81,9 @@ class StepEngine {
   TimeCfg time_;
   std::vector<Limit> limits_;
   std::vector<Hook> after_;
-  mutable std::shared_ptr<ArrayBoxes> scan_; // the arrays checkFinite scans (kernels/reductions.hpp)
+  mutable std::vector<std::string> stateNames_;
+  // Device tables of each scanned field set (kernels/reductions.hpp), by the names.
+  mutable std::map<std::string, std::shared_ptr<ArrayBoxes>> scans_;
 };
 
 } // namespace voigt

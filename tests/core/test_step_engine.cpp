@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/grid.hpp"
 #include "core/step_engine.hpp"
@@ -27,6 +28,7 @@ struct Rig {
     st.grid = makeGrid(MPI_COMM_WORLD, {8, 6, 4}, {0, 0, 0}, {1, 1, 1}, {false, false, false});
     st.fields.declare("phi", Centring::Cell, 1, "test");
     st.fields.declare("u", Centring::Node, 3, "test");
+    st.fields.declareDerived("scratch", Centring::Cell, 1, "test");
     st.fields.allocate(st.grid);
     p.add(Stage::Momentum, "test", "count", [this](State&) { ++stepsRun; });
   }
@@ -144,6 +146,37 @@ TEST(StepEngine, NonFiniteNamesFieldAndGlobalCell) {
   EXPECT_NE(m.find("field 'u' component y"), std::string::npos) << m;
   EXPECT_NE(m.find("node (5, 2, 3)"), std::string::npos) << m;
   EXPECT_NE(m.find("after step 1"), std::string::npos) << m;
+}
+
+// A derived field (recomputed within each step) is left out of the per-step check and
+// caught by the check of all fields that comes before any write (voigt run).
+TEST(StepEngine, DerivedFieldsCheckedBeforeWritesOnly) {
+  Rig r;
+  StepEngine e(r.st, r.p, TimeCfg{});
+  const Grid& g = r.st.grid;
+  Field s = r.st.fields.scalar("scratch");
+  const int gi = 1, gj = 1, gk = 1; // global cell (1, 1, 1)
+  if (gi >= g.c0[0] && gi < g.c1[0] && gj >= g.c0[1] && gj < g.c1[1] &&
+      gk >= g.c0[2] && gk < g.c1[2])
+    Kokkos::deep_copy(Kokkos::subview(s, g.local(0, gi), g.local(1, gj), g.local(2, gk)), INFINITY);
+  EXPECT_EQ(blowUp(e), "");
+  EXPECT_EQ(e.fieldsWhere(true), std::vector<std::string>{"scratch"});
+  EXPECT_EQ(e.fieldsWhere(false), (std::vector<std::string>{"phi", "u"}));
+  EXPECT_EQ(e.nonFinite({"phi", "u"}), "");
+  const std::string m = e.nonFinite(e.fieldsWhere(true));
+  EXPECT_NE(m.find("field 'scratch' = inf at cell (1, 1, 1)"), std::string::npos) << m;
+}
+
+// Declared derived by one effect and as state by another: state (checked every step).
+TEST(StepEngine, StateWinsOverDerived) {
+  FieldStore f;
+  f.declareDerived("a", Centring::Cell, 1, "one");
+  f.declare("a", Centring::Cell, 1, "two");
+  f.declareDerived("a", Centring::Cell, 1, "three");
+  EXPECT_FALSE(f.decls().at("a").derived);
+  f.declareDerived("b", Centring::Cell, 1, "one");
+  f.declareDerived("b", Centring::Cell, 1, "two");
+  EXPECT_TRUE(f.decls().at("b").derived);
 }
 
 TEST(StepEngine, StopRequestStops) {

@@ -74,10 +74,11 @@ void Elasticity::declareFields(FieldStore& f) const {
   const std::string me = name();
   f.declare(field::psi, Centring::Cell, 1, me);
   f.declare(field::velocity, Centring::Node, 3, me);
-  for (const char* n : {"solid_stress", "solid_stress_shear", "solid_stress_old", "solid_stress_old_shear"})
-    f.declare(n, Centring::Cell, 3, me);
-  f.declare("S2", Centring::Cell, 1, me);
-  f.declare("log10_S2", Centring::Cell, 1, me);
+  for (const char* n : {"solid_stress", "solid_stress_shear"}) f.declare(n, Centring::Cell, 3, me);
+  // Runge-Kutta stage copies and diagnostics: derived (FieldStore::Decl::derived).
+  for (const char* n : {"solid_stress_old", "solid_stress_old_shear"}) f.declareDerived(n, Centring::Cell, 3, me);
+  f.declareDerived("S2", Centring::Cell, 1, me);
+  f.declareDerived("log10_S2", Centring::Cell, 1, me);
 }
 
 void Elasticity::refreshStress(State& st) const { refresh(st, solidStressField(st.fields)); }

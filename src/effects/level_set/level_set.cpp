@@ -43,7 +43,7 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
 
 void LevelSet::declareFields(FieldStore& f) const {
   f.declare(field::psi, Centring::Cell, 1, name());
-  f.declare("psi_old", Centring::Cell, 1, name());
+  f.declareDerived("psi_old", Centring::Cell, 1, name()); // the RK stage copy
 }
 
 void LevelSet::refreshGhosts(State& st, const Field& f) const {

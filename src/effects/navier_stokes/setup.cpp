@@ -49,19 +49,22 @@ void NavierStokes::configure(const Scene& s, const Published& pub) {
 
 void NavierStokes::declareFields(FieldStore& f) const {
   const std::string me = name();
+  // State: u, p and dp (the next solve's initial guess); the rest is derived from them,
+  // the scene or the level set within each step (FieldStore::Decl::derived).
   f.declare(field::velocity, Centring::Node, 3, me);
-  f.declare("velocity_old", Centring::Node, 3, me);
-  f.declare("acceleration", Centring::Node, 3, me);
-  f.declare("proj_coef", Centring::Node, 3, me);
-  f.declare(field::fixValue, Centring::Node, 3, me);
+  f.declareDerived("velocity_old", Centring::Node, 3, me);
+  f.declareDerived("acceleration", Centring::Node, 3, me);
+  f.declareDerived("proj_coef", Centring::Node, 3, me);
+  f.declareDerived(field::fixValue, Centring::Node, 3, me);
   f.declare(field::fixMask, Centring::Node, 1, me, true);
   if (conservative_)
     for (const char* n : {"momentum_density", "momentum_density_stage", "momentum_density_rhs"})
-      f.declare(n, Centring::Node, 1, me);
+      f.declareDerived(n, Centring::Node, 1, me);
   for (const char* n : {"tau_xx", "tau_yy", "tau_zz", "tau_xy", "tau_yz", "tau_zx"})
-    f.declare(n, Centring::Cell, 1, me);
-  for (const char* n : {field::pressure, "pressure_increment", "poisson_rhs", "divergence", field::density, field::viscosity})
-    f.declare(n, Centring::Cell, 1, me);
+    f.declareDerived(n, Centring::Cell, 1, me);
+  for (const char* n : {field::pressure, "pressure_increment"}) f.declare(n, Centring::Cell, 1, me);
+  for (const char* n : {"poisson_rhs", "divergence", field::density, field::viscosity})
+    f.declareDerived(n, Centring::Cell, 1, me);
 }
 
 void NavierStokes::setup(State& st) {
@@ -158,9 +161,13 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
   const Grid& g = st.grid;
   VecField u = st.fields.vector(field::velocity);
   DtLimit best;
+  double m[3], mg[3]; // one Allreduce for the three components
+  VOIGT_UNROLL
+  for (int d = 0; d < 3; ++d) m[d] = localMaxAbs(u.c[d], nodeRange(g));
+  MPI_Allreduce(m, mg, 3, MPI_DOUBLE, MPI_MAX, g.comm);
   double inv = 0;
   VOIGT_UNROLL
-  for (int d = 0; d < 3; ++d) inv += globalMaxAbs(g, u.c[d], nodeRange(g)) / g.h[d];
+  for (int d = 0; d < 3; ++d) inv += mg[d] / g.h[d];
   if (inv > 0) best = {scene_->time.cfl / inv, "advective CFL"};
   // Explicit viscous limit dt <= 1 / (2 nu sum 1/h^2) (NUMERICS.md, = h^2/(6 nu)).
   Field mu = st.fields.scalar(field::viscosity), rho = st.fields.scalar(field::density);
