@@ -57,13 +57,16 @@ inline void copySolidSide(const Grid& g, const Field& psi, const SymTensorField&
       });
 }
 
-// One sweep over the fluid-side cells `cell` (fluidSide). Cells and neighbours are
-// addressed in flat memory (core/index_space.hpp flat()): the packed index is the
-// offset, a neighbour is a fixed offset from it; the weights multiply by a table of
-// 1/|d|^2 instead of dividing (the weights change in the last bit, the sweep's
-// result by rounding only: a common factor cancels in acc / wsum).
+// One sweep over the fluid-side cells `cell` (fluidSide), in the runs of consecutive
+// cells `runs` (listRuns, core/index_space.hpp). Cells and neighbours are addressed in
+// flat memory (core/index_space.hpp flat()): the packed index is the offset, a neighbour
+// is a fixed offset from it; the weights multiply by a table of 1/|d|^2 instead of
+// dividing (the weights change in the last bit, the sweep's result by rounding only: a
+// common factor cancels in acc / wsum). Branch-free, so that a run vectorises: a
+// neighbour that does not count adds w = 0 (a + 0 * s = a for finite s; no sum starts
+// or becomes -0), the same sums in the same order as skipping it.
 inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, const SymTensorField& dst,
-                  const IntList& cell, int n, double below = 0) {
+                  const IntList& cell, int n, const IntList& runs, int nRuns, double below = 0) {
   if (n == 0) return;
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
@@ -80,24 +83,25 @@ inline void sweep(const Grid& g, const Field& psi, const SymTensorField& src, co
   for (int c = 0; c < 6; ++c) s[c] = flat(src.c[c]), d[c] = flat(dst.c[c]);
   const FlatField s0 = s[0], s1 = s[1], s2 = s[2], s3 = s[3], s4 = s[4], s5 = s[5];
   const FlatField d0 = d[0], d1 = d[1], d2 = d[2], d3 = d[3], d4 = d[4], d5 = d[5];
-  for_listed("extension_sweep", cell, n, KOKKOS_LAMBDA(int, int p) {
+  for_runs("extension_sweep", cell, runs, nRuns, n, KOKKOS_LAMBDA(int, int p) {
         const double pc = ps(p);
         double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, wsum = 0;
-        if (pc <= below) {
-          for (int dk = -1; dk <= 1; ++dk)
-            for (int dj = -1; dj <= 1; ++dj)
-              for (int di = -1; di <= 1; ++di) {
-                const int o = p + di + dj * sj + dk * sk;
-                const double dp = ps(o) - pc;
-                if (!(dp > 0)) continue;
-                const double w = dp * dp * inv[(dk + 1) * 9 + (dj + 1) * 3 + di + 1];
-                a0 += w * s0(o), a1 += w * s1(o), a2 += w * s2(o);
-                a3 += w * s3(o), a4 += w * s4(o), a5 += w * s5(o);
-                wsum += w;
-              }
-        }
-        // A local maximum of psi on the fluid side (no higher neighbour) keeps its value.
-        const bool keep = !(wsum > 0);
+        VOIGT_UNROLL
+        for (int dk = -1; dk <= 1; ++dk)
+          VOIGT_UNROLL
+          for (int dj = -1; dj <= 1; ++dj)
+            VOIGT_UNROLL
+            for (int di = -1; di <= 1; ++di) {
+              const int o = p + di + dj * sj + dk * sk;
+              const double dp = ps(o) - pc;
+              const double w = dp > 0 ? dp * dp * inv[(dk + 1) * 9 + (dj + 1) * 3 + di + 1] : 0.0;
+              a0 += w * s0(o), a1 += w * s1(o), a2 += w * s2(o);
+              a3 += w * s3(o), a4 += w * s4(o), a5 += w * s5(o);
+              wsum += w;
+            }
+        // A local maximum of psi on the fluid side (no higher neighbour), or a listed
+        // cell above `below`, keeps its value.
+        const bool keep = !(pc <= below && wsum > 0);
         d0(p) = keep ? s0(p) : a0 / wsum;
         d1(p) = keep ? s1(p) : a1 / wsum;
         d2(p) = keep ? s2(p) : a2 / wsum;

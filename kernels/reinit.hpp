@@ -69,6 +69,8 @@ struct BandViews {
   RealList sgn;   // S(psi0)
   RealList dist;  // Russo-Smereka distance D (kInterface cells)
   RealList coef;  // f_c / INT H' f (0 without the constraint or where INT ~ 0)
+  IntList runs;   // where the runs of consecutive cells start (listRuns: vectorised loops)
+  int nRuns = 0;
 };
 
 using voigt::Unpack; // core/index_space.hpp
@@ -196,22 +198,21 @@ inline void eikonalStage(const Grid& g, const BandViews& b, int n, const Field& 
   const double hmin = std::min({h0, h1, h2});
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
   const FlatField fi = flat(in), fb = flat(base), fo = flat(out);
-  for_listed("reinit_stage", b.cell, n, KOKKOS_LAMBDA(int q, int p) {
+  if (n > 0 && b.nRuns == 0) throw std::logic_error("eikonalStage: the band's runs were not built (listRuns)");
+  // Both rates computed, one selected: branch-free, so that a run of cells vectorises
+  // (for_runs); the same operations on the same values as the branch it replaces.
+  for_runs("reinit_stage", b.cell, b.runs, b.nRuns, n, KOKKOS_LAMBDA(int q, int p) {
         const double p0 = fi(p), s = b.sgn(q);
-        double rate;
-        if (subcell && (b.flags(q) & kInterface)) {
-          rate = (b.dist(q) - p0) / hmin; // Russo-Smereka, in the form that relaxes for either sign
-        } else {
-          const int fl = b.flags(q);
-          double dm, dp, g2 = 0;
-          eno2(fi(p - 2), fi(p - 1), p0, fi(p + 1), fi(p + 2), h0, fl & kEno, dm, dp);
-          g2 += godunov2(s, dm, dp);
-          eno2(fi(p - 2 * sj), fi(p - sj), p0, fi(p + sj), fi(p + 2 * sj), h1, fl & (kEno << 1), dm, dp);
-          g2 += godunov2(s, dm, dp);
-          eno2(fi(p - 2 * sk), fi(p - sk), p0, fi(p + sk), fi(p + 2 * sk), h2, fl & (kEno << 2), dm, dp);
-          g2 += godunov2(s, dm, dp);
-          rate = s * (1 - km::sqrt(g2));
-        }
+        const int fl = b.flags(q);
+        const double interfaceRate = (b.dist(q) - p0) / hmin; // Russo-Smereka, relaxing for either sign
+        double dm, dp, g2 = 0;
+        eno2(fi(p - 2), fi(p - 1), p0, fi(p + 1), fi(p + 2), h0, fl & kEno, dm, dp);
+        g2 += godunov2(s, dm, dp);
+        eno2(fi(p - 2 * sj), fi(p - sj), p0, fi(p + sj), fi(p + 2 * sj), h1, fl & (kEno << 1), dm, dp);
+        g2 += godunov2(s, dm, dp);
+        eno2(fi(p - 2 * sk), fi(p - sk), p0, fi(p + sk), fi(p + 2 * sk), h2, fl & (kEno << 2), dm, dp);
+        g2 += godunov2(s, dm, dp);
+        const double rate = subcell && (fl & kInterface) ? interfaceRate : s * (1 - km::sqrt(g2));
         fo(p) = alpha * fb(p) + (1 - alpha) * (p0 + dtau * rate);
       });
 }

@@ -71,6 +71,8 @@ struct Fixture {
   int nOwned = 0, nGrown = 0;
   IntList side; // the band's fluid side (psi <= 0): the cells the stress extension sweeps
   int nSide = 0;
+  IntList sideRuns; // where the runs of consecutive cells in `side` start (listRuns)
+  int nSideRuns = 0;
   reinit::BandViews band; // reinit band |psi| < 6 h
   int nBand = 0;
   double h = 0;
@@ -101,10 +103,14 @@ struct Fixture {
     nGrown = elastic::buildActiveList(g, psi, -5 * h, cellRange(g, 1), grown);
     side = IntList("side", cap);
     nSide = extension::fluidSide(psi, g, owned, nOwned, 0.0, side);
+    sideRuns = IntList("side_runs", cap);
+    nSideRuns = listRuns(side, nSide, sideRuns);
     band.cell = IntList("band", cap), band.flags = IntList("flags", cap);
     band.sgn = reinit::RealList("sgn", cap), band.dist = reinit::RealList("dist", cap);
     band.coef = reinit::RealList("coef", cap);
     nBand = reinit::buildBandList(g, psi, 6 * h, band.cell);
+    band.runs = IntList("runs", cap);
+    band.nRuns = listRuns(band.cell, nBand, band.runs);
     Kokkos::deep_copy(psi1, psi), Kokkos::deep_copy(psiT, psi);
     reinit::deltaField(g, psi, dH, 2 * h);
     reinit::prepareBand(g, band, nBand, psi, dH, gm, 6 * h, true);
@@ -260,7 +266,7 @@ void BM_ElasticStressAdvectionPointwise(benchmark::State& s) {
 // fluid side: list (4 B), psi, tau_S (6) read, tau (6) written; neighbours from cache.
 void BM_ExtensionSweep(benchmark::State& s) {
   auto& f = fx();
-  loop(s, [&] { extension::sweep(f.g, f.psi, f.tauS, f.tau, f.side, f.nSide, 0.0); });
+  loop(s, [&] { extension::sweep(f.g, f.psi, f.tauS, f.tau, f.side, f.nSide, f.sideRuns, f.nSideRuns, 0.0); });
   report(s, 13 * 8 + 4, f.nSide);
 }
 // --- reinit (band |psi| < 6 h around the sphere) ---

@@ -29,6 +29,7 @@ Reinitializer::Reinitializer(const Grid& g, ReinitParams p) : g_(&g), p_(p) {
   band_.sgn = reinit::RealList("reinit_sgn", cap);
   band_.dist = reinit::RealList("reinit_dist", cap);
   band_.coef = reinit::RealList("reinit_coef", cap);
+  band_.runs = reinit::IntList("reinit_runs", cap);
 }
 
 void Reinitializer::refresh(Halo& halo, const Field& f, const Range3* reads) const {
@@ -50,6 +51,7 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
   // values wherever the band kernels do not write.
   refresh(halo, psi);
   const int n = buildBandList(g, psi, p_.band, band_.cell);
+  band_.nRuns = listRuns(band_.cell, n, band_.runs);
   Kokkos::deep_copy(psi1_, psi);
   if (con) {
     Kokkos::deep_copy(psiT_, psi);

@@ -142,6 +142,7 @@ void projectionStressReductions(const Grid& g, Fields& f) {
   addStressDivergence(g, f.tau, f.coef, f.rhs, nodes);
   put("addStressDivergence", sumAbs(f.rhs, nodes));
   put("globalMaxAbs", globalMaxAbs(g, f.p, cells));
+  put("localMaxAbs", localMaxAbs(f.u.c[1], nodeRange(g)));
   put("countNonFinite", double(countNonFinite(f.p, cells)));
   { // the fused count over several arrays: one planted Inf in a copy of p, none in u.x
     Field q("q", g.ext[0], g.ext[1], g.ext[2]);
@@ -229,7 +230,10 @@ void elasticity(const Grid& g, Fields& f) {
   put("jaumannUpdate.explicit", sumAbs(f.tau2, cells));
   elastic::addSolidStress(g, f.psi, 2 * h, f.tauS, f.tau, grown, nGrown);
   put("addSolidStress", sumAbs(f.tau, cells));
-  extension::sweep(g, f.psi, f.tauS, f.tau2, grown, nGrown, 0.0);
+  const IntList runs("runs", size_t(nGrown > 0 ? nGrown : 1));
+  const int nRuns = listRuns(grown, nGrown, runs);
+  put("listRuns", nRuns), put("listRuns.list", sumList(runs, nRuns));
+  extension::sweep(g, f.psi, f.tauS, f.tau2, grown, nGrown, runs, nRuns, 0.0);
   put("sweep", sumAbs(f.tau2, cells));
   const IntList side("side", size_t(nGrown > 0 ? nGrown : 1));
   const int nSide = extension::fluidSide(f.psi, g, grown, nGrown, 0.0, side);
@@ -247,6 +251,9 @@ void reinitialisation(const Grid& g, Fields& f) {
   b.sgn = reinit::RealList("sgn", cap), b.dist = reinit::RealList("dist", cap), b.coef = reinit::RealList("coef", cap);
   const int n = reinit::buildBandList(g, f.q, band, b.cell);
   put("buildBandList", n), put("buildBandList.list", sumList(b.cell, n));
+  b.runs = IntList("runs", size_t(n > 0 ? n : 1));
+  b.nRuns = listRuns(b.cell, n, b.runs);
+  put("listRuns.band", b.nRuns);
   reinit::deltaField(g, f.q, f.dH, 2 * h);
   put("deltaField", sumAbs(f.dH, cellRange(g)));
   reinit::gradMagField(g, f.q, f.dH, f.gm);

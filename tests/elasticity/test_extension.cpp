@@ -70,12 +70,14 @@ PlaneResult extendPlane(const double n[3], const double t[3], int sweeps) {
       });
   IntList list("list", size_t(g.cellsOwned()));
   const int cnt = elastic::buildActiveList(g, psi, -6.5 * h, cellRange(g), list);
+  IntList runs("runs", size_t(g.cellsOwned()));
+  const int nRuns = listRuns(list, cnt, runs);
   for (int s = 0; s < sweeps; ++s) {
     const SymTensorField& from = s % 2 == 0 ? a : b;
     const SymTensorField& to = s % 2 == 0 ? b : a;
     halo.exchange(std::vector<Field>(from.c, from.c + 6));
     for (int c = 0; c < 6; ++c) fillCellGhostsEven(g, from.c[c]);
-    extension::sweep(g, psi, from, to, list, cnt);
+    extension::sweep(g, psi, from, to, list, cnt, runs, nRuns);
   }
   const SymTensorField& res = sweeps % 2 == 0 ? a : b;
   PlaneResult r;

@@ -64,13 +64,14 @@ void Elasticity::extend(State& st) {
   Field psi = st.fields.scalar(field::psi);
   // Only the fluid-side cells change; both buffers hold the others' values.
   const int nSide = extension::fluidSide(psi, st.grid, owned_, nOwned_, below_, side_cells_);
+  const int nRuns = listRuns(side_cells_, nSide, side_runs_);
   extension::copySolidSide(st.grid, psi, t, b, owned_, nOwned_, below_);
   const Range3 reads = grown(ownedBox_, 1); // the sweeps read the band box and 1 layer
   for (int s = 0; s < sweeps_; ++s) {
     const SymTensorField& from = s % 2 == 0 ? t : b;
     const SymTensorField& to = s % 2 == 0 ? b : t;
     refresh(st, from, &reads); // collective
-    extension::sweep(st.grid, psi, from, to, side_cells_, nSide, below_);
+    extension::sweep(st.grid, psi, from, to, side_cells_, nSide, side_runs_, nRuns, below_);
   }
   refresh(st, t); // sweeps_ is even: the result is in tau_S
 }

@@ -105,6 +105,7 @@ void Elasticity::setup(State& st) {
   owned_ = elastic::IntList("elastic_owned", size_t(g.cellsOwned()));
   prev_ = elastic::IntList("elastic_prev", size_t(g.cellsOwned()));
   if (extend_) side_cells_ = elastic::IntList("elastic_fluid_side", size_t(g.cellsOwned()));
+  if (extend_) side_runs_ = elastic::IntList("elastic_fluid_side_runs", size_t(g.cellsOwned()));
   grown_ = elastic::IntList("elastic_grown", size_t(cellRange(g, 1).size()));
   nOwned_ = nPrev_ = nGrown_ = 0;
 
