@@ -326,6 +326,22 @@ struct ListBoxAcc {
   }
 };
 
+// Runs of a packed list: start(r) is the first q of the r-th stretch of consecutive
+// cells (list(q + 1) == list(q) + 1, so within one x row); returns their count. start
+// needs room for n entries.
+inline int listRuns(const IntList& list, int n, const IntList& start) {
+  int count = 0;
+  Kokkos::parallel_scan(
+      "list_runs", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q, int& upd, bool final) {
+        if (q == 0 || list(q) != list(q - 1) + 1) {
+          if (final) start(upd) = q;
+          ++upd;
+        }
+      },
+      count);
+  return count;
+}
+
 // Bounding box (local indices, [b, e)) of the first n listed cells; empty range if n == 0.
 inline Range3 listBox(const Grid& g, const IntList& cell, int n) {
   Range3 box{{0, 0, 0}, {0, 0, 0}};

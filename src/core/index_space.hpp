@@ -124,24 +124,8 @@ inline Range3 nodeRange(const Grid& g, int grow = 0) {
 // p = i + e0 (j + e1 k) with e = Grid::ext, looped over by a 1-D RangePolicy.
 using IntList = Kokkos::View<int*, MemSpace>;
 
-// Runs of a packed list: start(r) is the first q of the r-th stretch of consecutive
-// cells (list(q + 1) == list(q) + 1, so within one x row); returns their count. start
-// needs room for n entries.
-inline int listRuns(const IntList& list, int n, const IntList& start) {
-  int count = 0;
-  Kokkos::parallel_scan(
-      "list_runs", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int q, int& upd, bool final) {
-        if (q == 0 || list(q) != list(q - 1) + 1) {
-          if (final) start(upd) = q;
-          ++upd;
-        }
-      },
-      count);
-  return count;
-}
-
 // for_runs(name, list, start, nRuns, n, f): f(q, p) for q < n, p = list(q), as
-// for_listed, but on host backends each run of consecutive cells (listRuns) is a plain
+// for_listed, but on host backends each run of consecutive cells (listRuns, kernels/reductions.hpp) is a plain
 // loop over p = list(q0) + m that the compiler vectorises (contiguous loads instead of a
 // gather per access). Same contract as for_each3. Device backends ignore the runs.
 template <class F>
