@@ -240,27 +240,42 @@ using voigt::listBox; // kernels/reductions.hpp
 
 constexpr double kAll = -1e300; // jaumannUpdate's `above`: every listed cell, psi not read
 
-// Benson update, Eq. (16), on the listed cells (those with psi > above, when given).
-// u needs the nodes of those cells.
+// Benson update, Eq. (16), on the listed cells (those with psi > above, when given), in
+// the runs of consecutive cells `runs` (listRuns): flat addressing (cellVelocityGradient's
+// corners as fixed offsets, the same sums in the same order) and a masked store instead of
+// an early return, so that a run vectorises. u needs the nodes of those cells.
 inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField& tau, double mu, double dt,
-                          const IntList& cell, int n, double spinScale = 0.5,
+                          const IntList& cell, int n, const IntList& runs, int nRuns, double spinScale = 0.5,
                           Rotation rot = Rotation::Cayley, const Field& psi = Field(),
                           double above = kAll) {
   if (n == 0) return;
-  GridGeom G(g);
-  const Unpack up{g.ext[0], g.ext[1]};
-  auto t0 = tau.c[0], t1 = tau.c[1], t2 = tau.c[2], t3 = tau.c[3], t4 = tau.c[4], t5 = tau.c[5];
-  Kokkos::parallel_for(
-      "elastic_jaumann", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        if (above > kAll && !(psi(i, j, k) > above)) return;
-        double L[3][3];
-        cellVelocityGradient(G, u, i, j, k, L);
-        double s[6] = {t0(i, j, k), t1(i, j, k), t2(i, j, k), t3(i, j, k), t4(i, j, k), t5(i, j, k)};
+  const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
+  const double q0 = 4 * g.h[0], q1 = 4 * g.h[1], q2 = 4 * g.h[2];
+  const bool masked = above > kAll;
+  const FlatField fp = masked ? flat(psi) : FlatField();
+  const FlatField ux = flat(u.c[0]), uy = flat(u.c[1]), uz = flat(u.c[2]);
+  const FlatSym t = flatSym(tau);
+  const FlatField t0 = t.c[0], t1 = t.c[1], t2 = t.c[2], t3 = t.c[3], t4 = t.c[4], t5 = t.c[5];
+  for_runs("elastic_jaumann", cell, runs, nRuns, n, KOKKOS_LAMBDA(int, int p) {
+        const bool on = !masked || fp(p) > above;
+        double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}; // as cellVelocityGradient (stress.hpp)
+        VOIGT_UNROLL
+        for (int c = 0; c < 8; ++c) {
+          const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1, o = p + a + b * sj + e * sk;
+          const double sg[3] = {a ? 1.0 : -1.0, b ? 1.0 : -1.0, e ? 1.0 : -1.0};
+          const double v[3] = {ux(o), uy(o), uz(o)};
+          VOIGT_UNROLL
+          for (int comp = 0; comp < 3; ++comp)
+            VOIGT_UNROLL
+            for (int dir = 0; dir < 3; ++dir) L[comp][dir] += sg[dir] * v[comp];
+        }
+        VOIGT_UNROLL
+        for (int comp = 0; comp < 3; ++comp) L[comp][0] /= q0, L[comp][1] /= q1, L[comp][2] /= q2;
+        double s[6] = {t0(p), t1(p), t2(p), t3(p), t4(p), t5(p)};
+        const double s0[6] = {s[0], s[1], s[2], s[3], s[4], s[5]};
         bensonUpdate(s, L, mu, dt, spinScale, rot);
-        t0(i, j, k) = s[0]; t1(i, j, k) = s[1]; t2(i, j, k) = s[2];
-        t3(i, j, k) = s[3]; t4(i, j, k) = s[4]; t5(i, j, k) = s[5];
+        t0(p) = on ? s[0] : s0[0], t1(p) = on ? s[1] : s0[1], t2(p) = on ? s[2] : s0[2];
+        t3(p) = on ? s[3] : s0[3], t4(p) = on ? s[4] : s0[4], t5(p) = on ? s[5] : s0[5];
       });
 }
 

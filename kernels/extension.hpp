@@ -26,15 +26,15 @@
 namespace voigt {
 namespace extension {
 
-// The listed cells with psi <= below, packed into `side`; returns their count.
-inline int fluidSide(const Field& psi, const Grid& g, const IntList& cell, int n, double below, const IntList& side) {
-  const Unpack up{g.ext[0], g.ext[1]};
+// The listed cells with psi <= below (or, solid: psi > below), packed into `side`; returns
+// their count.
+inline int fluidSide(const Field& psi, const Grid& g, const IntList& cell, int n, double below, const IntList& side,
+                     bool solid = false) {
+  const FlatField fpsi = flat(psi); // the packed index is the offset: no (i, j, k) decoding
   int count = 0;
   Kokkos::parallel_scan(
       "extension_fluid_side", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int p, int& upd, bool final) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        if (psi(i, j, k) <= below) {
+        if ((fpsi(cell(p)) <= below) != solid) {
           if (final) side(upd) = cell(p);
           ++upd;
         }

@@ -41,6 +41,8 @@ struct Fixture {
   SymTensorField tau, tauS;
   IntList owned, grown; // elastic band (psi > -(kappa + 3 h)): owned cells, one ghost layer more
   int nOwned = 0, nGrown = 0;
+  IntList ownedRuns; // where the runs of consecutive cells in `owned` start (listRuns)
+  int nOwnedRuns = 0;
   IntList side; // the band's fluid side (psi <= 0): the cells the stress extension sweeps
   int nSide = 0;
   IntList sideRuns; // where the runs of consecutive cells in `side` start (listRuns)
@@ -73,6 +75,8 @@ struct Fixture {
     owned = IntList("owned", cap), grown = IntList("grown", capG);
     nOwned = elastic::buildActiveList(g, psi, -5 * h, cellRange(g), owned);
     nGrown = elastic::buildActiveList(g, psi, -5 * h, cellRange(g, 1), grown);
+    ownedRuns = IntList("owned_runs", cap);
+    nOwnedRuns = listRuns(owned, nOwned, ownedRuns);
     side = IntList("side", cap);
     nSide = extension::fluidSide(psi, g, owned, nOwned, 0.0, side);
     sideRuns = IntList("side_runs", cap);

@@ -145,7 +145,7 @@ void BM_StressDivergence(benchmark::State& s) {
 // Jaumann/Cayley update (Eq. 16): list index (4 B), u (3), RMW tau_S (12).
 void BM_ElasticJaumann(benchmark::State& s) {
   auto& f = fx();
-  loop(s, [&] { elastic::jaumannUpdate(f.g, f.u, f.tauS, 1.0, 1e-4, f.owned, f.nOwned); });
+  loop(s, [&] { elastic::jaumannUpdate(f.g, f.u, f.tauS, 1.0, 1e-4, f.owned, f.nOwned, f.ownedRuns, f.nOwnedRuns); });
   report(s, 15 * 8 + 4, f.nOwned);
 }
 // tau += H(psi) tau_S: list (4 B), psi, tau_S (6), RMW tau (12).

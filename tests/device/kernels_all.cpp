@@ -224,9 +224,12 @@ void elasticity(const Grid& g, Fields& f) {
   put("listBox", box.b[0] + 10.0 * box.b[1] + 100.0 * box.b[2] + 1000.0 * box.e[0] + 1e4 * box.e[1] + 1e5 * box.e[2]);
   const Range3 cells = cellRange(g, 1);
   for (int c = 0; c < 6; ++c) Kokkos::deep_copy(f.tau2.c[c], f.tauS.c[c]);
-  elastic::jaumannUpdate(g, f.u, f.tau2, 1.0, 1e-2, owned, nOwned);
+  const IntList ownedRuns("owned_runs", size_t(nOwned > 0 ? nOwned : 1));
+  const int nOwnedRuns = listRuns(owned, nOwned, ownedRuns);
+  elastic::jaumannUpdate(g, f.u, f.tau2, 1.0, 1e-2, owned, nOwned, ownedRuns, nOwnedRuns);
   put("jaumannUpdate.cayley", sumAbs(f.tau2, cells));
-  elastic::jaumannUpdate(g, f.u, f.tau2, 1.0, 1e-2, owned, nOwned, 0.5, elastic::Rotation::Explicit, f.psi, 0.0);
+  elastic::jaumannUpdate(g, f.u, f.tau2, 1.0, 1e-2, owned, nOwned, ownedRuns, nOwnedRuns, 0.5,
+                         elastic::Rotation::Explicit, f.psi, 0.0);
   put("jaumannUpdate.explicit", sumAbs(f.tau2, cells));
   elastic::addSolidStress(g, f.psi, 2 * h, f.tauS, f.tau, grown, nGrown);
   put("addSolidStress", sumAbs(f.tau, cells));

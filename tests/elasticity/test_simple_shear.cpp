@@ -78,8 +78,10 @@ void shear(double mu, double dgamma, int steps, elastic::Rotation rot, F at) {
   elastic::IntList list("list", size_t(g.cellsOwned()));
   const int n = elastic::buildActiveList(g, psi, 0.0, cellRange(g), list);
   EXPECT_EQ(n, g.cellsOwned());
+  elastic::IntList runs("runs", size_t(g.cellsOwned()));
+  const int nRuns = listRuns(list, n, runs);
   for (int s = 1; s <= steps; ++s) {
-    elastic::jaumannUpdate(g, u, tau, mu, dgamma, list, n, 0.5, rot);
+    elastic::jaumannUpdate(g, u, tau, mu, dgamma, list, n, runs, nRuns, 0.5, rot);
     Result r;
     const Range3 cr = cellRange(g);
     for (int c = 0; c < 6; ++c) {

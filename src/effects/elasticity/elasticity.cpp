@@ -103,9 +103,11 @@ void Elasticity::setup(State& st) {
   // more each step; the outer band continues the iteration over steps.
   sweeps_ = 2 * ((int(std::ceil(kappa_ / hmin_ - 1e-9)) + 2 + 1) / 2);
   owned_ = elastic::IntList("elastic_owned", size_t(g.cellsOwned()));
+  owned_runs_ = elastic::IntList("elastic_owned_runs", size_t(g.cellsOwned()));
   prev_ = elastic::IntList("elastic_prev", size_t(g.cellsOwned()));
   if (extend_) side_cells_ = elastic::IntList("elastic_fluid_side", size_t(g.cellsOwned()));
   if (extend_) side_runs_ = elastic::IntList("elastic_fluid_side_runs", size_t(g.cellsOwned()));
+  if (extend_) solid_cells_ = elastic::IntList("elastic_solid_side", size_t(g.cellsOwned()));
   grown_ = elastic::IntList("elastic_grown", size_t(cellRange(g, 1).size()));
   nOwned_ = nPrev_ = nGrown_ = 0;
 

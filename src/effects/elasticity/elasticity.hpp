@@ -112,6 +112,8 @@ class Elasticity : public Effect {
   elastic::IntList owned_, prev_, grown_;
   elastic::IntList side_cells_; // extend: the listed cells the extension sweeps write
   elastic::IntList side_runs_;  // ... and where their runs of consecutive cells start
+  elastic::IntList solid_cells_; // extend: the listed cells the Jaumann update writes (psi > below_)
+  elastic::IntList owned_runs_;  // where the updated cells' runs of consecutive cells start (listRuns)
   int nOwned_ = 0, nPrev_ = 0, nGrown_ = 0;
   Range3 ownedBox_{{0, 0, 0}, {0, 0, 0}}; // listBox(owned_), set with the list (buildLists)
 
