@@ -106,31 +106,6 @@ KOKKOS_INLINE_FUNCTION long long nonFiniteInRow(const double* row, int b0, int e
   return static_cast<long long>(c);
 }
 
-// Non-finite values (NaN, +-Inf) of f over r on this rank. The per-step blow-up
-// check: an integer count, so the i-loop vectorises on host (no FP reduction).
-inline long long countNonFinite(const Field& f, Range3 r) {
-  long long n = 0;
-#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
-  if constexpr (kOnDevice) {
-    Kokkos::parallel_reduce(
-        "count_non_finite", r.policy(),
-        KOKKOS_LAMBDA(int i, int j, int k, long long& acc) {
-          const double v = f(i, j, k);
-          acc += !(v - v == 0);
-        },
-        n);
-    return n;
-  }
-#endif
-  using Policy2 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
-  const int b0 = r.b[0], e0 = r.e[0];
-  Kokkos::parallel_reduce(
-      "count_non_finite", Policy2({r.b[1], r.b[2]}, {r.e[1], r.e[2]}, {1, 1}),
-      KOKKOS_LAMBDA(int j, int k, long long& acc) { acc += nonFiniteInRow(&f(0, j, k), b0, e0); },
-      n);
-  return n;
-}
-
 // Arrays of one grid's extents, each with its own range (owned cells or nodes): the
 // fields the blow-up check scans every step, as device tables, so that one reduction
 // counts them all (one launch and one fence a step, not one per component).
@@ -205,6 +180,10 @@ inline long long countNonFinite(const ArrayBoxes& a) {
       n);
   return n;
 }
+
+// Non-finite values (NaN, +-Inf) of one field over r on this rank (the tables of a
+// one-array ArrayBoxes: for occasional use, not every step).
+inline long long countNonFinite(const Field& f, Range3 r) { return countNonFinite(arrayBoxes({f}, {r})); }
 
 // Owned nodes whose three components are all prescribed (mask == 7), on this rank.
 inline long long countFullyFixed(const IntField& mask, Range3 nodes) {
