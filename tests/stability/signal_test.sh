@@ -13,7 +13,9 @@ SRC=$2
 NP=${3:-1}
 SCENE=$SRC/cases/taylor_green/taylor_green.yaml
 SETS=(--set "domain.cells=[16,16,4]" --set output.interval=0.5 --set time.end=1000)
-N=${VOIGT_SIGNAL_STEPS:-40}
+# Long enough (~0.4 s at 1 ms a step) that the signal lands while it steps: at 40 steps the
+# run could finish between the poll below and the kill.
+N=${VOIGT_SIGNAL_STEPS:-400}
 SETS+=(--set checkpoint.interval=$N) # a final checkpoint to compare
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/voigt_signal_XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
