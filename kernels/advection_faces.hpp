@@ -196,22 +196,74 @@ inline void addVelocityAdvectionFaces(const Grid& g, const VecField& v, const Ve
 // levelset.hpp) and advanced by one SSP-RK2 (Heun) stage in the same pass, as
 // the callers did with a zeroed rhs r:
 //   q <- (1 - a) o + a (q + dt r),   a = 1 (stage 1) or 1/2 (stage 2);
-// storeOld: stage 1 also sets o = q^n. Several fields: one call each (faster
-// than one kernel over all of them, perf/README.md). Slots: 2 d + {0: speed, 1: F}.
-inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, const VecField& v, Range3 cells,
-                                 Limiter limiter, double dt, double a, bool storeOld, FluxScratch& scratch) {
-  const auto F = faces::scalarFacesXYZ<true>(g, q, v, cells, limiter, scratch);
+// storeOld: stage 1 also sets o = q^n. The velocity is frozen over a step's stages and
+// the same for every field, so its face speeds are computed once (cellFaceSpeeds,
+// slots 0-2) and each field's pass writes only its fluxes (slots 3-5): a field's face
+// pass then reads q and one speed and writes one slot, not four velocity nodes and two
+// slots. Several fields: one call each (faster than one kernel over all of them,
+// perf/README.md).
+namespace faces {
+template <int D>
+void cellSpeeds(const Field& vd, Range3 r, const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
+  for_each3(
+      "cell_face_speeds", faceRange(r, D), KOKKOS_LAMBDA(int i, int j, int k) { F(i, j, k, D) = cellFaceSpeed(vd, D, i, j, k); });
+}
+template <int D, int LIM>
+void cellFluxes(const Field& q, Range3 r, const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
+  constexpr int di = D == 0, dj = D == 1, dk = D == 2;
+  for_each3(
+      "cell_advection_faces", faceRange(r, D), KOKKOS_LAMBDA(int i, int j, int k) {
+        F(i, j, k, 3 + D) = centralFluxT<LIM>(q(i - 2 * di, j - 2 * dj, k - 2 * dk), q(i - di, j - dj, k - dk),
+                                              q(i, j, k), q(i + di, j + dj, k + dk), F(i, j, k, D));
+      });
+}
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION void cellSum(const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F, int i, int j,
+                                         int k, double q0, double h, double& tend) {
+  const int ip = i + (D == 0), jp = j + (D == 1), kp = k + (D == 2);
+  const double ap = F(ip, jp, kp, D), am = F(i, j, k, D);
+  tend -= (F(ip, jp, kp, 3 + D) - F(i, j, k, 3 + D) - q0 * (ap - am)) / h;
+}
+} // namespace faces
+
+// The face speeds of v for cell fields on `cells` into the scratch's slots 0-2.
+inline void cellFaceSpeeds(const Grid& g, const VecField& v, Range3 cells, FluxScratch& scratch) {
+  scratch.reserve(g, 6);
+  faces::cellSpeeds<0>(v.c[0], cells, scratch.F);
+  faces::cellSpeeds<1>(v.c[1], cells, scratch.F);
+  faces::cellSpeeds<2>(v.c[2], cells, scratch.F);
+}
+
+// One stage for q with the speeds cellFaceSpeeds left in `speeds` (same cells).
+inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, Range3 cells, Limiter limiter, double dt,
+                                 double a, bool storeOld, const FluxScratch& speeds) {
+  const auto F = speeds.F;
+  withLimiter(limiter, [&](auto L) {
+    faces::cellFluxes<0, decltype(L)::value>(q, cells, F);
+    faces::cellFluxes<1, decltype(L)::value>(q, cells, F);
+    faces::cellFluxes<2, decltype(L)::value>(q, cells, F);
+  });
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   for_each3(
       "cell_advection_rk2", cells, KOKKOS_LAMBDA(int i, int j, int k) {
         const double q0 = q(i, j, k);
-        const double tend = faces::scalarTendency(F, i, j, k, q0, h0, h1, h2);
+        double tend = 0; // the same order as scalarTendency
+        faces::cellSum<0>(F, i, j, k, q0, h0, tend);
+        faces::cellSum<1>(F, i, j, k, q0, h1, tend);
+        faces::cellSum<2>(F, i, j, k, q0, h2, tend);
         double r = 0; // as the zeroed rhs the callers used: 0 + (-0) is +0, bit for bit
         r += tend;
         if (storeOld) o(i, j, k) = q0;
         const double old = storeOld ? q0 : o(i, j, k);
         q(i, j, k) = (1 - a) * old + a * (q0 + dt * r);
       });
+}
+
+// One field, one stage: the speeds, then the stage.
+inline void advanceCellAdvection(const Grid& g, const Field& q, const Field& o, const VecField& v, Range3 cells,
+                                 Limiter limiter, double dt, double a, bool storeOld, FluxScratch& scratch) {
+  cellFaceSpeeds(g, v, cells, scratch);
+  advanceCellAdvection(g, q, o, cells, limiter, dt, a, storeOld, scratch);
 }
 
 } // namespace voigt

@@ -190,50 +190,23 @@ KOKKOS_INLINE_FUNCTION void bensonUpdate(double tau[6], const double L[3][3], do
     addSpin(W, half, 0.5 * dt, tau); // tau^{n+1}
 }
 
-// Packed list of the cells of range r with psi > threshold (parallel_scan);
-// returns the count. psi must be fresh on r.
+// Packed list of the cells of range r with psi > threshold; returns the count. psi
+// must be fresh on r.
 inline int buildActiveList(const Grid& g, const Field& psi, double threshold, Range3 r, const IntList& cell) {
-  const int b0 = r.b[0], b1 = r.b[1], b2 = r.b[2];
-  const int l0 = r.e[0] - r.b[0], l1 = r.e[1] - r.b[1];
-  const int e0 = g.ext[0], e1 = g.ext[1];
-  const int total = int(r.size());
-  int count = 0;
-  Kokkos::parallel_scan(
-      "elastic_active_list", Kokkos::RangePolicy<ExecSpace>(0, total),
-      KOKKOS_LAMBDA(int q, int& upd, bool final) {
-        const int i = b0 + q % l0, j = b1 + (q / l0) % l1, k = b2 + q / (l0 * l1);
-        if (psi(i, j, k) > threshold) {
-          if (final) cell(upd) = i + e0 * (j + e1 * k);
-          ++upd;
-        }
-      },
-      count);
-  return count;
+  return listCellsWhere("elastic_active_list", g, r, cell,
+                        KOKKOS_LAMBDA(int i, int j, int k) { return psi(i, j, k) > threshold; });
 }
 
 // Packed list of the owned cells where any component of tau is non-zero (restart:
 // the cells the last step's band left stress in); returns the count.
 inline int buildNonzeroList(const Grid& g, const SymTensorField& tau, const IntList& cell) {
-  const Range3 r = cellRange(g);
-  const int b0 = r.b[0], b1 = r.b[1], b2 = r.b[2];
-  const int l0 = r.e[0] - r.b[0], l1 = r.e[1] - r.b[1];
-  const int e0 = g.ext[0], e1 = g.ext[1];
   const SymTensorField t = tau;
-  int count = 0;
-  Kokkos::parallel_scan(
-      "elastic_nonzero_list", Kokkos::RangePolicy<ExecSpace>(0, int(r.size())),
-      KOKKOS_LAMBDA(int q, int& upd, bool final) {
-        const int i = b0 + q % l0, j = b1 + (q / l0) % l1, k = b2 + q / (l0 * l1);
-        bool nz = false;
-        VOIGT_UNROLL
-        for (int c = 0; c < 6; ++c) nz = nz || t.c[c](i, j, k) != 0;
-        if (nz) {
-          if (final) cell(upd) = i + e0 * (j + e1 * k);
-          ++upd;
-        }
-      },
-      count);
-  return count;
+  return listCellsWhere("elastic_nonzero_list", g, cellRange(g), cell, KOKKOS_LAMBDA(int i, int j, int k) {
+    bool nz = false;
+    VOIGT_UNROLL
+    for (int c = 0; c < 6; ++c) nz = nz || t.c[c](i, j, k) != 0;
+    return nz;
+  });
 }
 
 using voigt::listBox; // kernels/reductions.hpp
@@ -243,21 +216,21 @@ constexpr double kAll = -1e300; // jaumannUpdate's `above`: every listed cell, p
 // Benson update, Eq. (16), on the listed cells (those with psi > above, when given), in
 // the runs of consecutive cells `runs` (listRuns): flat addressing (cellVelocityGradient's
 // corners as fixed offsets, the same sums in the same order) and a masked store instead of
-// an early return, so that a run vectorises. u needs the nodes of those cells.
-inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField& tau, double mu, double dt,
-                          const IntList& cell, int n, const IntList& runs, int nRuns, double spinScale = 0.5,
-                          Rotation rot = Rotation::Cayley, const Field& psi = Field(),
-                          double above = kAll) {
-  if (n == 0) return;
+// an early return, so that a run vectorises. u needs the nodes of those cells. The
+// rotation and the psi mask are template arguments: a runtime choice left Q undefined on
+// one path, and a short-circuit read of psi was a masked load; GCC kept the loop scalar.
+template <Rotation R, bool Masked>
+void jaumannRuns(const Grid& g, const VecField& u, const SymTensorField& tau, double mu, double dt, const IntList& cell,
+                 int n, const IntList& runs, int nRuns, double spinScale, const Field& psi, double above) {
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
   const double q0 = 4 * g.h[0], q1 = 4 * g.h[1], q2 = 4 * g.h[2];
-  const bool masked = above > kAll;
-  const FlatField fp = masked ? flat(psi) : FlatField();
+  const FlatField fp = Masked ? flat(psi) : FlatField();
   const FlatField ux = flat(u.c[0]), uy = flat(u.c[1]), uz = flat(u.c[2]);
   const FlatSym t = flatSym(tau);
   const FlatField t0 = t.c[0], t1 = t.c[1], t2 = t.c[2], t3 = t.c[3], t4 = t.c[4], t5 = t.c[5];
   for_runs("elastic_jaumann", cell, runs, nRuns, n, KOKKOS_LAMBDA(int, int p) {
-        const bool on = !masked || fp(p) > above;
+        bool on = true;
+        if (Masked) on = fp(p) > above;
         double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}; // as cellVelocityGradient (stress.hpp)
         VOIGT_UNROLL
         for (int c = 0; c < 8; ++c) {
@@ -273,10 +246,26 @@ inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField
         for (int comp = 0; comp < 3; ++comp) L[comp][0] /= q0, L[comp][1] /= q1, L[comp][2] /= q2;
         double s[6] = {t0(p), t1(p), t2(p), t3(p), t4(p), t5(p)};
         const double s0[6] = {s[0], s[1], s[2], s[3], s[4], s[5]};
-        bensonUpdate(s, L, mu, dt, spinScale, rot);
+        bensonUpdate(s, L, mu, dt, spinScale, R);
         t0(p) = on ? s[0] : s0[0], t1(p) = on ? s[1] : s0[1], t2(p) = on ? s[2] : s0[2];
         t3(p) = on ? s[3] : s0[3], t4(p) = on ? s[4] : s0[4], t5(p) = on ? s[5] : s0[5];
       });
+}
+
+inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField& tau, double mu, double dt,
+                          const IntList& cell, int n, const IntList& runs, int nRuns, double spinScale = 0.5,
+                          Rotation rot = Rotation::Cayley, const Field& psi = Field(),
+                          double above = kAll) {
+  if (n == 0) return;
+  const bool masked = above > kAll;
+  if (rot == Rotation::Cayley && masked)
+    jaumannRuns<Rotation::Cayley, true>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
+  else if (rot == Rotation::Cayley)
+    jaumannRuns<Rotation::Cayley, false>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
+  else if (masked)
+    jaumannRuns<Rotation::Explicit, true>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
+  else
+    jaumannRuns<Rotation::Explicit, false>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
 }
 
 // tau += H(psi) tau_S on the listed cells: Eq. (9)/(14). tau already holds the

@@ -305,6 +305,33 @@ struct ListBoxAcc {
   }
 };
 
+// Packed list (memory offsets, x fastest, as a scan over the cells would give) of the
+// cells of r where keep(i, j, k) holds; returns the count. The scan runs over x rows,
+// each counting its cells in a loop: no (i, j, k) decoding by division per cell, which
+// cost more than the test (elastic_active_list, reinit_band_list).
+template <class Keep>
+inline int listCellsWhere(const char* name, const Grid& g, Range3 r, const IntList& cell, const Keep& keep) {
+  const int b0 = r.b[0], e0r = r.e[0], b1 = r.b[1], b2 = r.b[2];
+  const int l1 = r.e[1] - r.b[1], rows = l1 * (r.e[2] - r.b[2]);
+  const int e0 = g.ext[0], e1 = g.ext[1];
+  int count = 0;
+  if (rows <= 0 || e0r <= b0) return 0;
+  Kokkos::parallel_scan(
+      name, Kokkos::RangePolicy<ExecSpace>(0, rows), KOKKOS_LAMBDA(int q, int& upd, bool final) {
+        const int j = b1 + q % l1, k = b2 + q / l1, base = e0 * (j + e1 * k);
+        if (final) {
+          for (int i = b0; i < e0r; ++i)
+            if (keep(i, j, k)) cell(upd++) = base + i;
+        } else {
+          int c = 0;
+          for (int i = b0; i < e0r; ++i) c += keep(i, j, k) ? 1 : 0;
+          upd += c;
+        }
+      },
+      count);
+  return count;
+}
+
 // Runs of a packed list: start(r) is the first q of the r-th stretch of consecutive
 // cells (list(q + 1) == list(q) + 1, so within one x row); returns their count. start
 // needs room for n entries.

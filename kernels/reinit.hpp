@@ -52,6 +52,7 @@
 #include "core/grid.hpp"
 #include "core/index_space.hpp"
 #include "kernels/heaviside.hpp"
+#include "kernels/reductions.hpp" // listCellsWhere
 
 namespace voigt {
 namespace reinit {
@@ -98,22 +99,10 @@ KOKKOS_INLINE_FUNCTION double godunov2(double s, double dm, double dp) {
   return maxOf(a * a, b * b);
 }
 
-// Compact list of owned cells with |psi0| < band (parallel_scan); returns the count.
+// Compact list of owned cells with |psi0| < band; returns the count.
 inline int buildBandList(const Grid& g, const Field& psi0, double band, const IntList& cell) {
-  const int ng = g.ng, l0 = g.ln[0], l1 = g.ln[1], e0 = g.ext[0], e1 = g.ext[1];
-  const int total = l0 * l1 * g.ln[2];
-  int count = 0;
-  Kokkos::parallel_scan(
-      "reinit_band_list", Kokkos::RangePolicy<ExecSpace>(0, total),
-      KOKKOS_LAMBDA(int q, int& upd, bool final) {
-        const int i = ng + q % l0, j = ng + (q / l0) % l1, k = ng + q / (l0 * l1);
-        if (km::fabs(psi0(i, j, k)) < band) {
-          if (final) cell(upd) = i + e0 * (j + e1 * k);
-          ++upd;
-        }
-      },
-      count);
-  return count;
+  return listCellsWhere("reinit_band_list", g, cellRange(g), cell,
+                        KOKKOS_LAMBDA(int i, int j, int k) { return km::fabs(psi0(i, j, k)) < band; });
 }
 
 // H'(psi0) of Eq. (4) over the whole array (ghosts included; psi0 must be fresh).

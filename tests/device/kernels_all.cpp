@@ -105,6 +105,11 @@ void advection(const Grid& g, Fields& f, FluxScratch& scratch) {
     advanceCellAdvection(g, f.psi1, f.o, f.u, cells, lims[l], 1e-3, 1.0, true, scratch);
     advanceCellAdvection(g, f.psi1, f.o, f.u, cells, lims[l], 1e-3, 0.5, false, scratch);
     put("advanceCellAdvection." + L, sumAbs(f.psi1, cells));
+    Kokkos::deep_copy(f.psi1, f.q); // the face speeds once for both stages, as the effects run it
+    cellFaceSpeeds(g, f.u, cells, scratch);
+    advanceCellAdvection(g, f.psi1, f.o, cells, lims[l], 1e-3, 1.0, true, scratch);
+    advanceCellAdvection(g, f.psi1, f.o, cells, lims[l], 1e-3, 0.5, false, scratch);
+    put("advanceCellAdvection.shared." + L, sumAbs(f.psi1, cells));
   }
   put("faceRange", double(faces::faceRange(cells, 1).size()));
 }
@@ -218,6 +223,12 @@ void elasticity(const Grid& g, Fields& f) {
   const int nGrown = elastic::buildActiveList(g, f.psi, -3 * h, cellRange(g, 1), grown);
   put("buildActiveList.owned", nOwned), put("buildActiveList.ownedList", sumList(owned, nOwned));
   put("buildActiveList.grown", nGrown), put("buildActiveList.grownList", sumList(grown, nGrown));
+  const Field q = f.q;
+  const int nPos = listCellsWhere("test_list", g, cellRange(g, 1), grown, KOKKOS_LAMBDA(int i, int j, int k) {
+    return q(i, j, k) > 0;
+  });
+  put("listCellsWhere", nPos), put("listCellsWhere.list", sumList(grown, nPos));
+  elastic::buildActiveList(g, f.psi, -3 * h, cellRange(g, 1), grown); // as before, for what follows
   const int nNz = elastic::buildNonzeroList(g, f.tauS, nz);
   put("buildNonzeroList", nNz), put("buildNonzeroList.list", sumList(nz, nNz));
   const Range3 box = elastic::listBox(g, owned, nOwned);

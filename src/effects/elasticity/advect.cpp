@@ -40,13 +40,14 @@ void Elasticity::advect(State& st) {
   const bool any = nOwned_ > 0;
   const double dt = st.dt;
   st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
+  if (any) cellFaceSpeeds(g, u, box, flux_); // u is frozen: once for 6 components x 2 stages
   for (int stage = 0; stage < 2; ++stage) {
     refreshStress(st); // collective: every rank, band or not
     if (!any) continue;
     // Face fluxes once each, RK update fused (kernels/advection_faces.hpp).
     VOIGT_UNROLL
     for (int c = 0; c < 6; ++c)
-      advanceCellAdvection(g, t.c[c], o[c], u, box, limiter_, dt, stage == 0 ? 1.0 : 0.5, stage == 0, flux_);
+      advanceCellAdvection(g, t.c[c], o[c], box, limiter_, dt, stage == 0 ? 1.0 : 0.5, stage == 0, flux_);
   }
   // tau_S = 0 outside the band: in the box, and where the band was last step.
   elastic::zeroOutsideBand(g, psi, threshold_, t, box, any, prev_, nPrev_, st.fields.scalar("S2"),

@@ -22,10 +22,11 @@ void LevelSet::advect(State& st) {
   st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
   const double dt = st.dt;
   Kokkos::deep_copy(old, psi);
+  cellFaceSpeeds(g, u, cells, flux_); // u is frozen: once for both stages
   VOIGT_UNROLL
   for (int stage = 0; stage < 2; ++stage) {
     refreshGhosts(st, psi);
-    advanceCellAdvection(g, psi, old, u, cells, limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
+    advanceCellAdvection(g, psi, old, cells, limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
   }
   refreshGhosts(st, psi);
 }
