@@ -336,41 +336,45 @@ inline void zeroOutsideBand(const Grid& g, const Field& psi, double thr, const S
 // 1e-6, so that stress-free cells do not swamp a colour map with -infinity; the paper shades
 // by "the magnitude of the logarithm", and S2 of a deviatoric stress can be negative). Local
 // sums: energy = sum H(psi) tau_S:tau_S / (4 mu_S) dV, maxS2 = max |S2| inside the solid.
+struct EnergyMaxAcc {
+  double sum, max;
+  template <class D, class S>
+  KOKKOS_INLINE_FUNCTION static void join(D& d, const S& s) {
+    d.sum += s.sum;
+    if (s.max > d.max) d.max = s.max;
+  }
+  KOKKOS_INLINE_FUNCTION static void init(EnergyMaxAcc& v) { v.sum = 0, v.max = 0; }
+};
+
 inline void stressDiagnostics(const Grid& g, const SymTensorField& tau, const Field& psi, const Field& S2,
                               const Field& lg, const IntList& cell, int n, double kappa, double mu, double& energy,
                               double& maxS2) {
-  const Unpack up{g.ext[0], g.ext[1]};
-  const SymTensorField t = tau;
+  // One pass, flat addressing (the packed entry is the offset): the sum in list order as
+  // before; max |S2| over the solid cells starts at 0 (what an empty list reported).
+  const FlatSym t = flatSym(tau);
+  const FlatField t0 = t.c[0], t1 = t.c[1], t2 = t.c[2], t3 = t.c[3], t4 = t.c[4], t5 = t.c[5];
+  const FlatField fpsi = flat(psi), fS2 = flat(S2), flg = flat(lg);
   const double dv = g.cellVolume(), inv4mu = 1 / (4 * mu);
   const double floorS2 = (1e-6 * mu) * (1e-6 * mu);
-  double e = 0, m = 0;
+  EnergyMaxAcc acc;
   Kokkos::parallel_reduce(
       "elastic_diagnose", Kokkos::RangePolicy<ExecSpace>(0, n),
-      KOKKOS_LAMBDA(int p, double& sum) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        const double xx = t.c[0](i, j, k), yy = t.c[1](i, j, k), zz = t.c[2](i, j, k);
-        const double xy = t.c[3](i, j, k), yz = t.c[4](i, j, k), zx = t.c[5](i, j, k);
+      KOKKOS_LAMBDA(int q, EnergyMaxAcc& v) {
+        const int p = cell(q);
+        const double xx = t0(p), yy = t1(p), zz = t2(p), xy = t3(p), yz = t4(p), zx = t5(p);
         const double s2 = secondInvariant(xx, yy, zz, xy, yz, zx);
-        S2(i, j, k) = s2;
+        fS2(p) = s2;
         const double a = km::fabs(s2);
-        lg(i, j, k) = km::log10(a > floorS2 ? a : floorS2);
-        const double H = smoothedHeaviside(psi(i, j, k), kappa);
-        sum += H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
+        flg(p) = km::log10(a > floorS2 ? a : floorS2);
+        const double ps = fpsi(p);
+        const double H = smoothedHeaviside(ps, kappa);
+        v.sum += H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
+        const double m = ps > 0 ? a : 0.0; // inside the solid only
+        if (m > v.max) v.max = m;
       },
-      e);
-  Kokkos::parallel_reduce(
-      "elastic_max_S2", Kokkos::RangePolicy<ExecSpace>(0, n),
-      KOKKOS_LAMBDA(int p, double& mx) {
-        int i, j, k;
-        up(cell(p), i, j, k);
-        const double a = psi(i, j, k) > 0 ? km::fabs(S2(i, j, k)) : 0.0; // inside the solid only
-        if (a > mx) mx = a;
-      },
-      Kokkos::Max<double>(m));
-  if (n == 0) m = 0; // the Max reducer starts at the lowest double
-  energy = e;
-  maxS2 = m;
+      AccReducer<EnergyMaxAcc>(acc));
+  energy = acc.sum;
+  maxS2 = acc.max;
 }
 
 } // namespace elastic

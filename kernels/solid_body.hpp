@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <Kokkos_Core.hpp>
+#include <Kokkos_ScatterView.hpp>
 #include <cmath>
 
 #include "core/field.hpp"
@@ -125,7 +126,10 @@ inline double solidBending(const Grid& g, const Field& psi, double kappa, double
   const double x0 = g.lo[0] - c[0], y0 = g.lo[1] - c[1], z0 = g.lo[2] - c[2];
   const double n0 = e[0][0], n1 = e[0][1], n2 = e[0][2], a0 = e[1][0], a1 = e[1][1], a2 = e[1][2];
   const double b0 = e[2][0], b1 = e[2][1], b2 = e[2][2];
-  // Scatter-add (atomics): a plain parallel_for, never for_each3's ivdep loop.
+  // Scatter-add through a ScatterView: plain adds on Serial (in the order the atomics
+  // took), a copy per thread on OpenMP, atomics on a GPU; a plain parallel_for, never
+  // for_each3's ivdep loop.
+  auto sv = Kokkos::Experimental::create_scatter_view(bins);
   Kokkos::parallel_for("solid_body_columns", cellRange(g).policy(), KOKKOS_LAMBDA(int i, int j, int k) {
         const double w = smoothedHeaviside(psi(i, j, k), kappa);
         if (w <= 0) return;
@@ -136,17 +140,20 @@ inline double solidBending(const Grid& g, const Field& psi, double kappa, double
         // on a column boundary splits evenly, so no rounding tie moves it.
         const double fa = a / hm, fb = b / hm;
         const int ia = int(km::floor(fa)), ib = int(km::floor(fb));
+        auto acc = sv.access();
         for (int n = 0; n < 4; ++n) {
           const int qa = ia + (n & 1) + R, qb = ib + (n >> 1) + R;
           if (qa < 0 || qa >= nb || qb < 0 || qb >= nb) continue;
           const double kw = w * ((n & 1) ? fa - ia : 1 - (fa - ia)) * ((n >> 1) ? fb - ib : 1 - (fb - ib));
           const int q = qa + nb * qb;
-          Kokkos::atomic_add(&bins(q, 0), kw * a);
-          Kokkos::atomic_add(&bins(q, 1), kw * b);
-          Kokkos::atomic_add(&bins(q, 2), kw * s);
-          Kokkos::atomic_add(&bins(q, 3), kw);
+          acc(q, 0) += kw * a;
+          acc(q, 1) += kw * b;
+          acc(q, 2) += kw * s;
+          acc(q, 3) += kw;
         }
       });
+  auto sums = bins; // contribute takes a non-const view
+  Kokkos::Experimental::contribute(sums, sv);
   auto hb = Kokkos::create_mirror_view(bins);
   Kokkos::deep_copy(hb, bins);
   MPI_Allreduce(MPI_IN_PLACE, hb.data(), int(hb.size()), MPI_DOUBLE, MPI_SUM, g.comm);
