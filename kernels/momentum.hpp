@@ -12,6 +12,7 @@
 #include "core/field.hpp"
 #include "core/index_space.hpp"
 #include "kernels/projection_ops.hpp"
+#include "kernels/stress.hpp"
 
 namespace voigt {
 
@@ -82,6 +83,29 @@ inline void momentumStage2Conservative(const Field& r0, const Field& r1, const F
       u.c[c](i, j, k) = (m >> c) & 1 ? val.c[c](i, j, k) : s;
     }
   });
+}
+
+// The predictor's stress and pressure terms in one pass, as addStressDivergence then
+// subtractGradient (same operations in the same order, one read and write of rhs):
+//   rhs_d += coef_d (div tau)_d,   rhs_d -= pscale coef_d (G p)_d.
+inline void addStressMinusGradient(const Grid& g, const SymTensorField& tau, const Field& p, const VecField& coef,
+                                   double pscale, const VecField& rhs, Range3 nodes) {
+  GridGeom G(g);
+  const SymTensorField t = tau;
+  for_each3("stress_divergence_gradient", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+        double f[3], gr[3];
+        nodeStressDivergence(G, t, i, j, k, f);
+        const double w = G.nodeWeight(i, j, k);
+        nodeGradient(G, p, i, j, k, gr);
+        VOIGT_UNROLL
+        for (int d = 0; d < 3; ++d) {
+          const double c = coef.c[d](i, j, k);
+          double r = rhs.c[d](i, j, k);
+          r += c * f[d] / w;
+          r -= pscale * c * gr[d];
+          rhs.c[d](i, j, k) = r;
+        }
+      });
 }
 
 // rhs += g, a uniform body force per unit mass (the gravity effect's Forces task).

@@ -67,27 +67,34 @@ inline void viscousStress(const Grid& g, const VecField& u, const Field& mu, con
       });
 }
 
-// rhs_i += scale_i(n) * (div tau)_i at nodes, with the same one-sided weighting
-// at boundary nodes as G (projection_ops.hpp), so sum u.div(tau) = -sum tau:D.
+// (div tau)_i * w at node (i, j, k) (w: the node's weight, not divided out), with the same
+// one-sided weighting at boundary nodes as G (projection_ops.hpp), so sum u.div(tau) =
+// -sum tau:D.
+KOKKOS_FORCEINLINE_FUNCTION void nodeStressDivergence(const GridGeom& G, const SymTensorField& t, int i, int j, int k,
+                                                      double f[3]) {
+  f[0] = f[1] = f[2] = 0;
+  VOIGT_UNROLL
+  for (int c = 0; c < 8; ++c) {
+    const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
+    const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + e;
+    const bool ok = G.cellExists3(ci, cj, ck); // selected, not skipped (projection_ops.hpp)
+    const double sx = (a ? 1 : -1) / (4 * G.h[0]), sy = (b ? 1 : -1) / (4 * G.h[1]), sz = (e ? 1 : -1) / (4 * G.h[2]);
+    const double xx = t.c[0](ci, cj, ck), yy = t.c[1](ci, cj, ck), zz = t.c[2](ci, cj, ck);
+    const double xy = t.c[3](ci, cj, ck), yz = t.c[4](ci, cj, ck), zx = t.c[5](ci, cj, ck);
+    f[0] += ok ? sx * xx + sy * xy + sz * zx : 0.0;
+    f[1] += ok ? sx * xy + sy * yy + sz * yz : 0.0;
+    f[2] += ok ? sx * zx + sy * yz + sz * zz : 0.0;
+  }
+}
+
+// rhs_i += scale_i(n) * (div tau)_i at nodes.
 inline void addStressDivergence(const Grid& g, const SymTensorField& tau, const VecField& scale,
                                 const VecField& rhs, Range3 nodes) {
   GridGeom G(g);
-  auto t0 = tau.c[0], t1 = tau.c[1], t2 = tau.c[2], t3 = tau.c[3], t4 = tau.c[4], t5 = tau.c[5];
+  const SymTensorField t = tau;
   for_each3("stress_divergence", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-        double f[3] = {0, 0, 0};
-        VOIGT_UNROLL
-        for (int c = 0; c < 8; ++c) {
-          const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
-          const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + e;
-          const bool ok = G.cellExists3(ci, cj, ck); // selected, not skipped (projection_ops.hpp)
-          const double sx = (a ? 1 : -1) / (4 * G.h[0]), sy = (b ? 1 : -1) / (4 * G.h[1]),
-                       sz = (e ? 1 : -1) / (4 * G.h[2]);
-          const double xx = t0(ci, cj, ck), yy = t1(ci, cj, ck), zz = t2(ci, cj, ck);
-          const double xy = t3(ci, cj, ck), yz = t4(ci, cj, ck), zx = t5(ci, cj, ck);
-          f[0] += ok ? sx * xx + sy * xy + sz * zx : 0.0;
-          f[1] += ok ? sx * xy + sy * yy + sz * yz : 0.0;
-          f[2] += ok ? sx * zx + sy * yz + sz * zz : 0.0;
-        }
+        double f[3];
+        nodeStressDivergence(G, t, i, j, k, f);
         const double w = G.nodeWeight(i, j, k);
         VOIGT_UNROLL
         for (int d = 0; d < 3; ++d) rhs.c[d](i, j, k) += scale.c[d](i, j, k) * f[d] / w;

@@ -41,8 +41,7 @@ void NavierStokes::evaluateRhs(State& st, Pipeline& p, const VecField& u, const 
   st.evalRhs = rhs;
   p.run(Stage::Stress, st);
   VecField coef = st.fields.vector("proj_coef");
-  addStressDivergence(g, stressField(st.fields), coef, rhs, nodes);
-  subtractGradient(g, st.fields.scalar(field::pressure), coef, 1.0, rhs, nodes);
+  addStressMinusGradient(g, stressField(st.fields), st.fields.scalar(field::pressure), coef, 1.0, rhs, nodes);
   p.run(Stage::Forces, st);
 }
 
