@@ -32,11 +32,13 @@ KOKKOS_INLINE_FUNCTION double cellFaceSpeed(const Field& vd, int d, int i, int j
 }
 
 // Momentum face fluxes along axis D (compile-time: the offsets fold into the
-// addressing): slots 5 D + {0: speed, 1: F_rho, 2..4: F_m}.
+// addressing): slots 4 D + {0: F_rho, 1..3: F_m}. The face speed is not stored: the
+// sum pass recomputes it from the velocity it reads anyway (same expression, same
+// bits), which saves writing and reading three slots a node.
 template <int D, int LIM>
 void momentumFaces(const Field& rho, const VecField& v, Range3 nodes,
                    const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F) {
-  constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 5 * D;
+  constexpr int di = D == 0, dj = D == 1, dk = D == 2, s0 = 4 * D - 1;
   const Field vx = v.c[0], vy = v.c[1], vz = v.c[2], vd = v.c[D];
   for_each3(
       "momentum_advection_faces", faceRange(nodes, D), KOKKOS_LAMBDA(int i, int j, int k) {
@@ -44,7 +46,6 @@ void momentumFaces(const Field& rho, const VecField& v, Range3 nodes,
         double rL, rR, uL, uR;
         musclStatesT<LIM>(rho(i - 2 * di, j - 2 * dj, k - 2 * dk), rho(i - di, j - dj, k - dk), rho(i, j, k),
                     rho(i + di, j + dj, k + dk), rL, rR);
-        F(i, j, k, s0) = a;
         F(i, j, k, s0 + 1) = ktFlux(a, rL, rR);
         musclStatesT<LIM>(vx(i - 2 * di, j - 2 * dj, k - 2 * dk), vx(i - di, j - dj, k - dk), vx(i, j, k),
                     vx(i + di, j + dj, k + dk), uL, uR);
@@ -60,12 +61,13 @@ void momentumFaces(const Field& rho, const VecField& v, Range3 nodes,
 // One axis of the momentum face differences, unrolled (a runtime axis or
 // component index keeps the compiler from holding the views in registers).
 template <int D>
-KOKKOS_FORCEINLINE_FUNCTION void momentumSum(const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F, int i,
-                                             int j, int k, double r0, double u0, double u1, double u2, double hinv,
-                                             double& tr, double* tm) {
-  constexpr int s0 = 5 * D;
-  const int ip = i + (D == 0), jp = j + (D == 1), kp = k + (D == 2);
-  const double ap = F(ip, jp, kp, s0), am = F(i, j, k, s0);
+KOKKOS_FORCEINLINE_FUNCTION void momentumSum(const Kokkos::View<double****, Kokkos::LayoutLeft, MemSpace>& F,
+                                             const Field& vd, int i, int j, int k, double r0, double u0, double u1,
+                                             double u2, double hinv, double& tr, double* tm) {
+  constexpr int s0 = 4 * D - 1, di = D == 0, dj = D == 1, dk = D == 2;
+  const int ip = i + di, jp = j + dj, kp = k + dk;
+  const double vc = vd(i, j, k);
+  const double ap = 0.5 * (vc + vd(ip, jp, kp)), am = 0.5 * (vd(i - di, j - dj, k - dk) + vc); // as momentumFaces
   tr -= (F(ip, jp, kp, s0 + 1) - F(i, j, k, s0 + 1) - r0 * (ap - am)) * hinv;
   tm[0] -= (F(ip, jp, kp, s0 + 2) - F(i, j, k, s0 + 2) - r0 * u0 * (ap - am)) * hinv;
   tm[1] -= (F(ip, jp, kp, s0 + 3) - F(i, j, k, s0 + 3) - r0 * u1 * (ap - am)) * hinv;
@@ -79,7 +81,7 @@ KOKKOS_FORCEINLINE_FUNCTION void momentumSum(const Kokkos::View<double****, Kokk
 inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const VecField& v, const Field& rhoRef,
                                       const Field& rhsRho, const VecField& rhs, Range3 nodes, Limiter limiter,
                                       FluxScratch& scratch, bool assign = false) {
-  scratch.reserve(g, 15);
+  scratch.reserve(g, 12);
   auto F = scratch.F;
   auto vx = v.c[0], vy = v.c[1], vz = v.c[2];
   withLimiter(limiter, [&](auto L) {
@@ -94,9 +96,9 @@ inline void addMomentumAdvectionFaces(const Grid& g, const Field& rho, const Vec
         const double r0 = rho(i, j, k);
         const double u0 = vx(i, j, k), u1 = vy(i, j, k), u2 = vz(i, j, k);
         double tr = 0, tm[3] = {0, 0, 0};
-        faces::momentumSum<0>(F, i, j, k, r0, u0, u1, u2, ih0, tr, tm);
-        faces::momentumSum<1>(F, i, j, k, r0, u0, u1, u2, ih1, tr, tm);
-        faces::momentumSum<2>(F, i, j, k, r0, u0, u1, u2, ih2, tr, tm);
+        faces::momentumSum<0>(F, vx, i, j, k, r0, u0, u1, u2, ih0, tr, tm);
+        faces::momentumSum<1>(F, vy, i, j, k, r0, u0, u1, u2, ih1, tr, tm);
+        faces::momentumSum<2>(F, vz, i, j, k, r0, u0, u1, u2, ih2, tr, tm);
         rhsRho(i, j, k) = tr;
         const double inv = 1 / rhoRef(i, j, k);
         rx(i, j, k) = (assign ? 0.0 : rx(i, j, k)) + tm[0] * inv;
