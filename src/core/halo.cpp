@@ -30,14 +30,15 @@ void pack(const Field& f, const Slab& s, Buf buf, long long off) { copyBoxFlat<t
 void unpack(const Field& f, const Slab& s, Buf buf, long long off) { copyBoxFlat<false>(f, s.b, s.e, buf, off); }
 } // namespace
 
-void Halo::exchange(const std::vector<Field>& fields) {
+void Halo::exchange(const std::vector<Field>& fields, int depth) {
   const Grid& g = *g_;
   const double t0 = MPI_Wtime();
+  const int nd = depth > 0 && depth < g.ng ? depth : g.ng; // layers next to the owned ones
   for (int d = 0; d < 3; ++d) {
     if (g.nbrLo[d] == MPI_PROC_NULL && g.nbrHi[d] == MPI_PROC_NULL) continue;
     const int ng = g.ng, ln = g.ln[d];
-    Slab sLo = slab(g, d, ng, 2 * ng), sHi = slab(g, d, ln, ln + ng);
-    Slab rLo = slab(g, d, 0, ng), rHi = slab(g, d, ln + ng, ln + 2 * ng);
+    Slab sLo = slab(g, d, ng, ng + nd), sHi = slab(g, d, ln + ng - nd, ln + ng);
+    Slab rLo = slab(g, d, ng - nd, ng), rHi = slab(g, d, ln + ng, ln + ng + nd);
     const long long per = sLo.size(), total = per * (long long)fields.size();
     if ((long long)sendLo_.extent(0) < total) {
       sendLo_ = Buf("halo_sendLo", total);

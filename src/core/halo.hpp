@@ -13,9 +13,11 @@ namespace voigt {
 class Halo {
  public:
   explicit Halo(const Grid& g) : g_(&g) {}
-  void exchange(const std::vector<Field>& fields);
+  // depth: the ghost layers to fill next to a neighbour rank (0: all g.ng); a caller
+  // whose next stencil reads one layer passes 1 and sends half the bytes.
+  void exchange(const std::vector<Field>& fields, int depth = 0);
   void exchange(const VecField& v) { exchange(std::vector<Field>{v.c[0], v.c[1], v.c[2]}); }
-  void exchange(const Field& f) { exchange(std::vector<Field>{f}); }
+  void exchange(const Field& f, int depth = 0) { exchange(std::vector<Field>{f}, depth); }
 
   // Totals since construction, for the cost model in perf/.
   double seconds = 0;

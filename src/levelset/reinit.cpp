@@ -32,8 +32,8 @@ Reinitializer::Reinitializer(const Grid& g, ReinitParams p) : g_(&g), p_(p) {
   band_.runs = reinit::IntList("reinit_runs", cap);
 }
 
-void Reinitializer::refresh(Halo& halo, const Field& f, const Range3* reads) const {
-  halo.exchange(f);
+void Reinitializer::refresh(Halo& halo, const Field& f, const Range3* reads, int depth) const {
+  halo.exchange(f, depth);
   if (reads) fillCellGhostsEven(*g_, f, *reads);
   else fillCellGhostsEven(*g_, f);
 }
@@ -70,7 +70,7 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
       eikonalStage(g, band_, n, psi1_, psi, psi, 0.5, dtau, p_.subcellFix);
     } else {
       eikonalStage(g, band_, n, psi1_, psi, psiT_, 0.5, dtau, p_.subcellFix);
-      refresh(halo, psiT_, &reads);
+      refresh(halo, psiT_, &reads, 1); // the constraint reads one layer (27 neighbours)
       applyConstraint(g, band_, n, psiT_, psi, dH_, psi1_); // psi1 is free again
       copyBand(g, band_, n, psi1_, psi);
     }

@@ -47,7 +47,7 @@ class Reinitializer {
 
  private:
   // Halo exchange and wall ghosts; with `reads`, wall ghosts only where those cells lie.
-  void refresh(Halo& halo, const Field& f, const Range3* reads = nullptr) const;
+  void refresh(Halo& halo, const Field& f, const Range3* reads = nullptr, int depth = 0) const;
 
   const Grid* g_;
   ReinitParams p_;

@@ -71,7 +71,7 @@ void Elasticity::extend(State& st) {
   for (int s = 0; s < sweeps_; ++s) {
     const SymTensorField& from = s % 2 == 0 ? t : b;
     const SymTensorField& to = s % 2 == 0 ? b : t;
-    refresh(st, from, &reads); // collective
+    refresh(st, from, &reads, 1); // collective; the sweep reads one layer (27 neighbours)
     extension::sweep(st.grid, psi, from, to, side_cells_, nSide, side_runs_, nRuns, below_);
   }
   refresh(st, t); // sweeps_ is even: the result is in tau_S

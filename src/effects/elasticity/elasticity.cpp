@@ -83,8 +83,8 @@ void Elasticity::declareFields(FieldStore& f) const {
 
 void Elasticity::refreshStress(State& st) const { refresh(st, solidStressField(st.fields)); }
 
-void Elasticity::refresh(State& st, const SymTensorField& t, const Range3* reads) const {
-  st.halo->exchange(std::vector<Field>(t.c, t.c + 6));
+void Elasticity::refresh(State& st, const SymTensorField& t, const Range3* reads, int depth) const {
+  st.halo->exchange(std::vector<Field>(t.c, t.c + 6), depth);
   VOIGT_UNROLL
   for (int c = 0; c < 6; ++c) {
     if (reads) fillCellGhostsEven(st.grid, t.c[c], *reads);

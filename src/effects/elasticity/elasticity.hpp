@@ -92,7 +92,7 @@ class Elasticity : public Effect {
   void buildLists(State& st);
   void refreshStress(State& st) const;
   // Halo exchange and wall ghosts; with `reads`, wall ghosts only where those cells lie.
-  void refresh(State& st, const SymTensorField& t, const Range3* reads = nullptr) const;
+  void refresh(State& st, const SymTensorField& t, const Range3* reads = nullptr, int depth = 0) const;
   void extend(State& st);
 
   const Scene* scene_ = nullptr;
