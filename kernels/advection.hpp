@@ -40,6 +40,11 @@ template <int LIM>
 KOKKOS_FORCEINLINE_FUNCTION double limitedSlopeT(double a, double b) {
   if constexpr (LIM == 3) {
     return 0.5 * (a + b);
+  } else if constexpr (LIM == 0) {
+    // minmod: sgn min(a sgn, b sgn) is the argument of smaller magnitude (a*sgn*sgn = a
+    // exactly, ties give b either way): two selects instead of three products.
+    const double r = km::fabs(a) < km::fabs(b) ? a : b;
+    return a * b <= 0 ? 0.0 : r;
   } else {
     const double sgn = a > 0 ? 1.0 : -1.0;
     const double aa = a * sgn, bb = b * sgn;
