@@ -95,13 +95,13 @@ inline void addStressMinusGradient(const Grid& g, const SymTensorField& tau, con
   for_each3("stress_divergence_gradient", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         double f[3], gr[3];
         nodeStressDivergence(G, t, i, j, k, f);
-        const double w = G.nodeWeight(i, j, k);
+        const double iw = G.nodeWeightInv(i, j, k); // "/ w" exactly, w a power of two
         nodeGradient(G, p, i, j, k, gr);
         VOIGT_UNROLL
         for (int d = 0; d < 3; ++d) {
           const double c = coef.c[d](i, j, k);
           double r = rhs.c[d](i, j, k);
-          r += c * f[d] / w;
+          r += c * f[d] * iw;
           r -= pscale * c * gr[d];
           rhs.c[d](i, j, k) = r;
         }

@@ -39,6 +39,18 @@ struct GridGeom {
     }
     return w;
   }
+  // 1 / nodeWeight, exactly (a power of two): x * nodeWeightInv == x / nodeWeight bit for
+  // bit, without a division.
+  KOKKOS_INLINE_FUNCTION double nodeWeightInv(int i, int j, int k) const {
+    const int l[3] = {i, j, k};
+    double w = 1;
+    VOIGT_UNROLL
+    for (int d = 0; d < 3; ++d) {
+      const int gi = glob(d, l[d]);
+      w *= ((!per[d]) & ((gi == 0) | (gi == n[d]))) ? 2.0 : 1.0;
+    }
+    return w;
+  }
   // Does the cell with local index l along axis d exist (not beyond a wall)?
   KOKKOS_INLINE_FUNCTION bool cellExists(int d, int l) const {
     const int gi = glob(d, l);

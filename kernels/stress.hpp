@@ -95,9 +95,9 @@ inline void addStressDivergence(const Grid& g, const SymTensorField& tau, const 
   for_each3("stress_divergence", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
         double f[3];
         nodeStressDivergence(G, t, i, j, k, f);
-        const double w = G.nodeWeight(i, j, k);
+        const double iw = G.nodeWeightInv(i, j, k); // "/ w" exactly, w a power of two
         VOIGT_UNROLL
-        for (int d = 0; d < 3; ++d) rhs.c[d](i, j, k) += scale.c[d](i, j, k) * f[d] / w;
+        for (int d = 0; d < 3; ++d) rhs.c[d](i, j, k) += scale.c[d](i, j, k) * f[d] * iw;
       });
 }
 
