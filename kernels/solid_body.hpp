@@ -87,8 +87,8 @@ inline SolidAcc solidMoments(const Grid& g, const Field& psi, const VecField& u,
   // Moments about the domain centre (conditioning of the second moments).
   const double r0 = 0.5 * (g.lo[0] + g.hi[0]), r1 = 0.5 * (g.lo[1] + g.hi[1]), r2 = 0.5 * (g.lo[2] + g.hi[2]);
   SolidAcc acc;
-  Kokkos::parallel_reduce(
-      "solid_body_moments", cellRange(g).policy(),
+  reduce_rows(
+      "solid_body_moments", cellRange(g),
       KOKKOS_LAMBDA(int i, int j, int k, SolidAcc& a) {
         const double p = psi(i, j, k);
         const double x[3] = {lo0 + (i - ng + c0 + 0.5) * h0, lo1 + (j - ng + c1 + 0.5) * h1,

@@ -8,9 +8,10 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 # withLimiter, limiterNamed: host-side choices; scalarFacesXYZ, momentumStage: the shared
 # bodies of launchers that are called (addNodeAdvectionFaces..., momentumStage1/2);
-# mirror*GhostsAxis: the per-axis bodies that mirror*Ghosts instantiates for all three axes.
+# mirror*GhostsAxis: the per-axis bodies that mirror*Ghosts instantiates for all three axes;
+# reduce_rows, reduceRowsImpl: the row-wise reduction that kineticEnergy and solidMoments use.
 set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage flatSym mirrorNodeGhostsAxis
-    mirrorCellGhostsAxis)
+    mirrorCellGhostsAxis reduce_rows reduceRowsImpl)
 function(voigt_check_launchers mode)
   get_filename_component(_root "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../.." ABSOLUTE)
   file(GLOB _headers "${_root}/kernels/*.hpp")
