@@ -65,6 +65,7 @@
 #include "kernels/heaviside.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
+#include "kernels/lists.hpp"
 #include "kernels/stress.hpp"
 
 namespace voigt {

@@ -21,6 +21,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/index_space.hpp"
+#include "kernels/lists.hpp"
 #include "kernels/stress.hpp"
 
 namespace voigt {

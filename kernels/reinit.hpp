@@ -53,6 +53,7 @@
 #include "core/index_space.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/reductions.hpp" // listCellsWhere
+#include "kernels/lists.hpp"
 
 namespace voigt {
 namespace reinit {

@@ -32,7 +32,6 @@
 #include "kernels/fast_diag.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/levelset.hpp"
-#include "kernels/momentum.hpp"
 #include "kernels/poisson_rows.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
@@ -147,13 +146,6 @@ void projectionStressReductions(const Grid& g, Fields& f) {
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.rhs.c[c], 0.0);
   addStressDivergence(g, f.tau, f.coef, f.rhs, nodes);
   put("addStressDivergence", sumAbs(f.rhs, nodes));
-  { // on a copy: the effects' checks read rhs as addStressDivergence left it
-    const VecField r{{Field("r0", g.ext[0], g.ext[1], g.ext[2]), Field("r1", g.ext[0], g.ext[1], g.ext[2]),
-                      Field("r2", g.ext[0], g.ext[1], g.ext[2])}};
-    for (int c = 0; c < 3; ++c) Kokkos::deep_copy(r.c[c], f.rhs.c[c]);
-    addStressMinusGradient(g, f.tau, f.p, f.coef, 1e-2, r, nodes);
-    put("addStressMinusGradient", sumAbs(r, nodes));
-  }
   put("globalMaxAbs", globalMaxAbs(g, f.p, cells));
   put("localMaxAbs", localMaxAbs(f.u.c[1], nodeRange(g)));
   put("countNonFinite", double(countNonFinite(f.p, cells)));

@@ -50,6 +50,8 @@ void momentum(const Grid& g, Fields& f) {
   put("poissonRhs+addTo", sumAbs(f.div, cells));
   projectionCoefficients(g, f.rho, mask, f.u2, nodes);
   put("projectionCoefficients", sumAbs(f.u2, nodes));
+  addStressMinusGradient(g, f.tau, f.p, f.coef, 1e-2, f.rhs, nodes); // rhs is free here (runs last)
+  put("addStressMinusGradient", sumAbs(f.rhs, nodes));
 }
 
 // The solid_body effect's kernels: moments and gaps (a sphere target and a low x face)
