@@ -101,6 +101,7 @@ class Simulation {
     return nullptr;
   }
   const Pipeline& pipeline() const { return pipeline_; }
+  Pipeline& pipeline() { return pipeline_; } // tests add tasks (e.g. a fault to inject)
   nlohmann::json summary(const RunResult& r) const;
   const CheckpointCfg& checkpointConfig() const { return ck_; }
   // Everything but the fields that a checkpoint holds (io/checkpoint.hpp).

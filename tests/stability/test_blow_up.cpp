@@ -91,6 +91,40 @@ TEST(BlowUp, NamesFieldCellTimeAndKeepsLastGoodState) {
   }
 }
 
+// A non-finite value in a derived field (recomputed within each step, so outside the
+// per-step check of the state) is caught before anything copies or writes it: here by the
+// last good copy at the start of the next step, which then keeps the state before the step
+// that made it. Without a copy or write due the run goes on: the next step recomputes it.
+TEST(BlowUp, NonFiniteDerivedFieldIsCaughtBeforeItIsCopied) {
+  auto plant = [](Simulation& sim) { // inf in velocity_old (the RK copy) during step 4
+    sim.pipeline().add(Stage::Diagnostics, "test", "plant inf", [](State& st) {
+      if (st.step != 3) return;
+      const int n = st.grid.ng; // every rank's first owned node
+      Kokkos::deep_copy(Kokkos::subview(st.fields.vector("velocity_old").c[0], n, n, n), 1.0 / 0.0);
+    });
+  };
+  const std::vector<std::string> sets = {"domain.cells=[16,16,4]", "output.enabled=false"};
+  {
+    TempDir tmp;
+    auto keep = sets;
+    keep.push_back("checkpoint.last_good_interval=1");
+    const Scene s = caseScene("taylor_green/taylor_green.yaml", keep);
+    Simulation sim(s, MPI_COMM_WORLD, runOpts(tmp.sub("out"), 8));
+    plant(sim);
+    const std::string msg = runToBlowUp(sim);
+    ASSERT_FALSE(msg.empty()) << "no blow-up detected";
+    EXPECT_NE(msg.find("field 'velocity_old' component x"), std::string::npos) << msg;
+    EXPECT_EQ(sim.state().step, 4);
+    expectLastGood(s, tmp, msg, 3);
+  }
+  auto none = sets;
+  none.push_back("checkpoint.last_good=false");
+  Simulation sim(caseScene("taylor_green/taylor_green.yaml", none), MPI_COMM_WORLD, runOpts("", 8)); // no output: nothing copied
+  plant(sim);
+  EXPECT_EQ(runToBlowUp(sim), "");
+  EXPECT_EQ(sim.state().step, 8);
+}
+
 // checkpoint.last_good_interval = 3: the state left behind is the newest step
 // that is a multiple of 3 before the blow-up (the copy is refreshed every 3 steps).
 TEST(BlowUp, LastGoodIntervalKeepsAnEarlierState) {
