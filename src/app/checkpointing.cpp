@@ -174,6 +174,7 @@ nlohmann::json Simulation::restore(const std::string& file) {
   }
   for (auto& e : effects_) e->restored(st_);
   st_.propertiesChanged = true;
+  st_.velocityHalosCurrent = false;
   lastCheckpointStep_ = st_.step;
   return m;
 }

@@ -28,6 +28,11 @@ struct State {
   long step = 0;
   std::string dtReason;
   bool propertiesChanged = true; // set by whoever changes rho/mu; projection refills its matrix
+  // True while the velocity's rank and periodic ghosts hold the neighbours' current values:
+  // set by an exchange of it (exchangeVelocity), cleared by whoever writes it (the momentum
+  // stages, the projection's correction, prescribed_flow, a restore). A reader after the
+  // projection (level set, elasticity, the next predictor) then skips a redundant exchange.
+  bool velocityHalosCurrent = false;
 
   // Velocity a Stress/Forces task evaluates and the acceleration it adds to.
   VecField evalU, evalRhs;
@@ -41,5 +46,8 @@ struct State {
   // rank): Simulation::advance stops the run as a failure with this message.
   std::string stopRequest;
 };
+
+// The velocity's halo exchange, skipped while it is current (State::velocityHalosCurrent).
+void exchangeVelocity(State& st);
 
 } // namespace voigt

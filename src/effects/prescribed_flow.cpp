@@ -68,6 +68,7 @@ class PrescribedFlow : public Effect {
  private:
   void fill(State& st, double t) const {
     fillPrescribedFlow(st.grid, p_, t, st.fields.vector(field::velocity));
+    st.velocityHalosCurrent = false;
   }
   FlowParams p_;
   double cfl_ = 0.5;

@@ -39,7 +39,7 @@ void Elasticity::advect(State& st) {
   const Range3 box = ownedBox_;
   const bool any = nOwned_ > 0;
   const double dt = st.dt;
-  st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
+  exchangeVelocity(st); // face speeds need the nodes on the owned cells' high faces
   if (any) cellFaceSpeeds(g, u, box, flux_); // u is frozen: once for 6 components x 2 stages
   for (int stage = 0; stage < 2; ++stage) {
     refreshStress(st); // collective: every rank, band or not

@@ -19,7 +19,7 @@ void LevelSet::advect(State& st) {
   const Range3 cells = cellRange(g);
   Field psi = st.fields.scalar(field::psi), old = st.fields.scalar("psi_old");
   VecField u = st.fields.vector(field::velocity);
-  st.halo->exchange(u); // face speeds need the nodes on the owned cells' high faces
+  exchangeVelocity(st); // face speeds need the nodes on the owned cells' high faces
   const double dt = st.dt;
   Kokkos::deep_copy(old, psi);
   cellFaceSpeeds(g, u, cells, flux_); // u is frozen: once for both stages

@@ -21,8 +21,9 @@
 namespace voigt {
 
 namespace {
+// u is the state's velocity (updated in place by the stages).
 void refreshGhosts(State& st, const VecField& u) {
-  st.halo->exchange(u);
+  exchangeVelocity(st);
   fillVelocityGhosts(st.grid, *st.scene, u);
 }
 } // namespace
@@ -115,8 +116,10 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   if (!conservative_) {
     evaluateRhs(st, p, u, rhs);
     momentumStage1(u, u0, rhs, dt, mask, val, nodes);
+    st.velocityHalosCurrent = false;
     evaluateRhs(st, p, u, rhs);
     momentumStage2(u, u0, rhs, dt, mask, val, nodes);
+    st.velocityHalosCurrent = false;
     return;
   }
   // Conservative form (header).
@@ -125,10 +128,12 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   Field rr = st.fields.scalar("momentum_density_rhs");
   evaluateRhs(st, p, u, rhs, &r0);
   momentumStage1Conservative(r0, rr, r1, u, u0, rhs, dt, mask, val, nodes);
+  st.velocityHalosCurrent = false;
   st.halo->exchange(r1);
   fillNodeGhostsEven(g, r1);
   evaluateRhs(st, p, u, rhs, &r1);
   momentumStage2Conservative(r0, r1, rr, u, u0, rhs, dt, mask, val, nodes);
+  st.velocityHalosCurrent = false;
 }
 
 } // namespace voigt

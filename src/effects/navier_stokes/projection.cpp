@@ -58,7 +58,7 @@ void NavierStokes::project(State& st) {
   Field rhs = st.fields.scalar("poisson_rhs"), div = st.fields.scalar("divergence");
   const Range3 cells = cellRange(g);
 
-  st.halo->exchange(u);
+  exchangeVelocity(st);
   divergence(g, u, div, cells);
   st.diag["max_divergence_predicted"] = globalMaxAbs(g, div, cells);
   poissonRhs(div, rhs, dt, cells);
@@ -66,9 +66,10 @@ void NavierStokes::project(State& st) {
   const PoissonStats s = solver_->solve(rhs, dp);
   st.halo->exchange(dp);
   subtractGradient(g, dp, coef, dt, u, nodeRange(g));
+  st.velocityHalosCurrent = false;
   addTo(dp, p, cells);
   st.halo->exchange(p);
-  st.halo->exchange(u);
+  exchangeVelocity(st);
   fillVelocityGhosts(g, *st.scene, u);
 
   divergence(g, u, div, cells);
