@@ -64,11 +64,10 @@ void NavierStokes::project(State& st) {
   poissonRhs(div, rhs, dt, cells);
   // dp of the previous step is the initial guess.
   const PoissonStats s = solver_->solve(rhs, dp);
-  st.halo->exchange(dp);
+  addTo(dp, p, cells);
+  st.halo->exchange(std::vector<Field>{dp, p}); // one exchange for both: subtractGradient reads dp's ghosts
   subtractGradient(g, dp, coef, dt, u, nodeRange(g));
   st.velocityHalosCurrent = false;
-  addTo(dp, p, cells);
-  st.halo->exchange(p);
   exchangeVelocity(st);
   fillVelocityGhosts(g, *st.scene, u);
 
