@@ -28,26 +28,19 @@ struct GridGeom {
     }
   }
   KOKKOS_INLINE_FUNCTION int glob(int d, int l) const { return l - ng + c0[d]; }
-  // Node weight w_n from local node indices.
-  KOKKOS_INLINE_FUNCTION double nodeWeight(int i, int j, int k) const {
-    const int l[3] = {i, j, k};
-    double w = 1;
-    VOIGT_UNROLL
-    for (int d = 0; d < 3; ++d) {
-      const int gi = glob(d, l[d]);
-      w *= ((!per[d]) & ((gi == 0) | (gi == n[d]))) ? 0.5 : 1.0; // bitwise ops and a select: no branch
-    }
-    return w;
-  }
+  // Node weight w_n from local node indices: a factor 1/2 per axis on which the node lies on a wall.
+  KOKKOS_INLINE_FUNCTION double nodeWeight(int i, int j, int k) const { return wallFactor(i, j, k, 0.5); }
   // 1 / nodeWeight, exactly (a power of two): x * nodeWeightInv == x / nodeWeight bit for
   // bit, without a division.
-  KOKKOS_INLINE_FUNCTION double nodeWeightInv(int i, int j, int k) const {
+  KOKKOS_INLINE_FUNCTION double nodeWeightInv(int i, int j, int k) const { return wallFactor(i, j, k, 2.0); }
+  // f^(the number of axes on which the node lies on a non-periodic wall).
+  KOKKOS_INLINE_FUNCTION double wallFactor(int i, int j, int k, double f) const {
     const int l[3] = {i, j, k};
     double w = 1;
     VOIGT_UNROLL
     for (int d = 0; d < 3; ++d) {
       const int gi = glob(d, l[d]);
-      w *= ((!per[d]) & ((gi == 0) | (gi == n[d]))) ? 2.0 : 1.0;
+      w *= ((!per[d]) & ((gi == 0) | (gi == n[d]))) ? f : 1.0; // bitwise ops and a select: no branch
     }
     return w;
   }
