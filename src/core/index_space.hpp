@@ -137,11 +137,20 @@ inline void for_runs(const char* name, const IntList& list, const IntList& start
     return;
   }
 #endif
+  // Chunks of runs, each with its own copy of f: in an OpenMP region the closure is shared
+  // memory reached through a pointer, and GCC would not vectorise the run loop over it (the
+  // extension sweep ran scalar, 2.2x slower at one OpenMP thread than on Serial). Copies made
+  // inside a parallel region do not touch the views' reference counts.
+  const int chunks = nRuns < 1 ? 0 : nRuns < 8 * ExecSpace().concurrency() ? nRuns : 8 * ExecSpace().concurrency();
   Kokkos::parallel_for(
-      name, Kokkos::RangePolicy<ExecSpace>(0, nRuns), KOKKOS_LAMBDA(int r) VOIGT_FLATTEN {
-        const int q0 = start(r), len = (r + 1 < nRuns ? start(r + 1) : n) - q0, p0 = list(q0);
+      name, Kokkos::RangePolicy<ExecSpace>(0, chunks), KOKKOS_LAMBDA(int c) VOIGT_FLATTEN {
+        const F fl = f;
+        const int r1 = int((long long)nRuns * (c + 1) / chunks);
+        for (int r = int((long long)nRuns * c / chunks); r < r1; ++r) {
+          const int q0 = start(r), len = (r + 1 < nRuns ? start(r + 1) : n) - q0, p0 = list(q0);
 #pragma GCC ivdep
-        for (int m = 0; m < len; ++m) f(q0 + m, p0 + m);
+          for (int m = 0; m < len; ++m) fl(q0 + m, p0 + m);
+        }
       });
 }
 
