@@ -60,6 +60,12 @@ struct Range3 {
 #define VOIGT_UNROLL
 #endif
 
+// How many pieces a host loop over n items is cut into (a few per thread, for balance).
+inline long long hostChunks(long long n) {
+  const long long most = 8LL * ExecSpace().concurrency();
+  return n < 0 ? 0 : n < most ? n : most;
+}
+
 template <class F>
 inline void for_each3(const char* name, const Range3& r, const F& f) {
 #if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
@@ -74,7 +80,7 @@ inline void for_each3(const char* name, const Range3& r, const F& f) {
   const int b0 = r.b[0], e0 = r.e[0], b1 = r.b[1], b2 = r.b[2], nj = r.e[1] - r.b[1];
   const long long rows = 1LL * nj * (r.e[2] - r.b[2]);
   if (rows <= 0 || e0 <= b0) return;
-  const long long most = 8LL * ExecSpace().concurrency(), chunks = rows < most ? rows : most;
+  const long long chunks = hostChunks(rows);
   Kokkos::parallel_for(
       name, Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long long>>(0, chunks), KOKKOS_LAMBDA(long long c) VOIGT_FLATTEN {
         const F fl = f;
@@ -147,7 +153,7 @@ inline void for_runs(const char* name, const IntList& list, const IntList& start
   // memory reached through a pointer, and GCC would not vectorise the run loop over it (the
   // extension sweep ran scalar, 2.2x slower at one OpenMP thread than on Serial). Copies made
   // inside a parallel region do not touch the views' reference counts.
-  const int chunks = nRuns < 1 ? 0 : nRuns < 8 * ExecSpace().concurrency() ? nRuns : 8 * ExecSpace().concurrency();
+  const int chunks = int(hostChunks(nRuns));
   Kokkos::parallel_for(
       name, Kokkos::RangePolicy<ExecSpace>(0, chunks), KOKKOS_LAMBDA(int c) VOIGT_FLATTEN {
         const F fl = f;
