@@ -25,9 +25,12 @@ namespace voigt {
 namespace fs = std::filesystem;
 
 namespace {
-// Output fields by name; the pressure is shifted by the outflow reference.
+// Output fields by name; the pressure is shifted by the outflow reference. Their halos
+// are exchanged together (one message per neighbour), the velocity's only when stale.
 std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& names) {
   std::vector<OutField> out;
+  std::vector<Field> halos; // exchanged in one call
+  bool velocity = false;
   for (auto& n : names) {
     if (!st.fields.allocated(n))
       throw SceneError(st.scene->path + ": key 'output.fields': field '" + n +
@@ -36,8 +39,9 @@ std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& na
     OutField f{n, d.centring, {}};
     if (d.components == 3) {
       VecField v = st.fields.vector(n);
-      st.halo->exchange(v);
       f.comps = {v.c[0], v.c[1], v.c[2]};
+      if (n == field::velocity) velocity = true;
+      else halos.insert(halos.end(), v.c, v.c + 3);
     } else {
       Field s = st.fields.scalar(n);
       if (n == field::pressure) {
@@ -46,11 +50,17 @@ std::vector<OutField> gatherFields(State& st, const std::vector<std::string>& na
         shiftedCopy(s, c, ref);
         s = c;
       }
-      st.halo->exchange(s);
       f.comps = {s};
+      halos.push_back(s);
     }
     out.push_back(f);
   }
+  if (velocity && !st.velocityHalosCurrent) {
+    const VecField v = st.fields.vector(field::velocity);
+    halos.insert(halos.end(), v.c, v.c + 3);
+    st.velocityHalosCurrent = true;
+  }
+  if (!halos.empty()) st.halo->exchange(halos);
   return out;
 }
 } // namespace

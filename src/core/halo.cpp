@@ -53,9 +53,10 @@ void Halo::exchange(const std::vector<Field>& fields, int depth) {
       hrLo_ = Kokkos::create_mirror_view(recvLo_), hrHi_ = Kokkos::create_mirror_view(recvHi_);
 #endif
     }
-    for (size_t f = 0; f < fields.size(); ++f) {
-      pack(fields[f], sLo, sendLo_, f * per);
-      pack(fields[f], sHi, sendHi_, f * per);
+    const bool lo = g.nbrLo[d] != MPI_PROC_NULL, hi = g.nbrHi[d] != MPI_PROC_NULL;
+    for (size_t f = 0; f < fields.size(); ++f) { // only what a neighbour receives
+      if (lo) pack(fields[f], sLo, sendLo_, f * per);
+      if (hi) pack(fields[f], sHi, sendHi_, f * per);
     }
     Kokkos::fence();
     Kokkos::deep_copy(hsLo_, sendLo_);
@@ -68,11 +69,11 @@ void Halo::exchange(const std::vector<Field>& fields, int depth) {
     Kokkos::deep_copy(recvLo_, hrLo_);
     Kokkos::deep_copy(recvHi_, hrHi_);
     for (size_t f = 0; f < fields.size(); ++f) {
-      if (g.nbrLo[d] != MPI_PROC_NULL) unpack(fields[f], rLo, recvLo_, f * per);
-      if (g.nbrHi[d] != MPI_PROC_NULL) unpack(fields[f], rHi, recvHi_, f * per);
+      if (lo) unpack(fields[f], rLo, recvLo_, f * per);
+      if (hi) unpack(fields[f], rHi, recvHi_, f * per);
     }
     Kokkos::fence();
-    bytes += 8 * total * ((g.nbrLo[d] != MPI_PROC_NULL) + (g.nbrHi[d] != MPI_PROC_NULL));
+    bytes += 8 * total * (lo + hi);
     messages += 2;
   }
   seconds += MPI_Wtime() - t0;

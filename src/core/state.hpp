@@ -49,5 +49,7 @@ struct State {
 
 // The velocity's halo exchange, skipped while it is current (State::velocityHalosCurrent).
 void exchangeVelocity(State& st);
+// f's halo exchange, with the velocity's in the same message when that is stale.
+void exchangeWithVelocity(State& st, const Field& f);
 
 } // namespace voigt

@@ -42,7 +42,10 @@ void Elasticity::advect(State& st) {
   exchangeVelocity(st); // face speeds need the nodes on the owned cells' high faces
   if (any) cellFaceSpeeds(g, u, box, flux_); // u is frozen: once for 6 components x 2 stages
   for (int stage = 0; stage < 2; ++stage) {
-    refreshStress(st); // collective: every rank, band or not
+    // Collective: every rank, band or not. Stage 0 skips it after the last step's
+    // extension (its whole refresh), when nothing has written tau_S since.
+    if (stage > 0 || !stressHalosCurrent_) refreshStress(st);
+    stressHalosCurrent_ = false; // the stage writes tau_S
     if (!any) continue;
     // Face fluxes once each, RK update fused (kernels/advection_faces.hpp).
     VOIGT_UNROLL
@@ -75,6 +78,7 @@ void Elasticity::extend(State& st) {
     extension::sweep(st.grid, psi, from, to, side_cells_, nSide, side_runs_, nRuns, below_);
   }
   refresh(st, t); // sweeps_ is even: the result is in tau_S
+  stressHalosCurrent_ = true;
 }
 
 } // namespace voigt

@@ -81,7 +81,10 @@ void Elasticity::declareFields(FieldStore& f) const {
   f.declareDerived("log10_S2", Centring::Cell, 1, me);
 }
 
-void Elasticity::refreshStress(State& st) const { refresh(st, solidStressField(st.fields)); }
+void Elasticity::refreshStress(State& st) const {
+  refresh(st, solidStressField(st.fields));
+  stressHalosCurrent_ = true;
+}
 
 void Elasticity::refresh(State& st, const SymTensorField& t, const Range3* reads, int depth) const {
   st.halo->exchange(std::vector<Field>(t.c, t.c + 6), depth);

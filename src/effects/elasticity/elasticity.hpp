@@ -90,7 +90,7 @@ class Elasticity : public Effect {
 
  private:
   void buildLists(State& st);
-  void refreshStress(State& st) const;
+  void refreshStress(State& st) const; // sets stressHalosCurrent_
   // Halo exchange and wall ghosts; with `reads`, wall ghosts only where those cells lie.
   void refresh(State& st, const SymTensorField& t, const Range3* reads = nullptr, int depth = 0) const;
   void extend(State& st);
@@ -108,6 +108,10 @@ class Elasticity : public Effect {
   bool extend_ = true;             // extend or blend: cells with psi <= below_ are extended
   double below_ = 0;               // extend: 0; blend: -kappa
   int sweeps_ = 4;     // extension sweeps per step (even: the result lands in tau_S)
+  // True while tau_S's ghosts (rank and wall) match the owned cells: set by a whole refresh,
+  // cleared where tau_S is written (the transport's stages, the Jaumann update). The same
+  // on every rank (set and cleared outside any band test), so the collective skip agrees.
+  mutable bool stressHalosCurrent_ = false;
 
   elastic::IntList owned_, prev_, grown_;
   elastic::IntList side_cells_; // extend: the listed cells the extension sweeps write

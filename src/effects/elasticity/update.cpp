@@ -46,6 +46,7 @@ void Elasticity::update(State& st, double spinScale) {
                                                solid_cells_, true)
                         : nOwned_;
   const int nRuns = listRuns(cells, n, owned_runs_);
+  stressHalosCurrent_ = false;
   elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, cells, n, owned_runs_, nRuns, spinScale,
                          rotation_);
   if (extend_) extend(st);

@@ -52,7 +52,7 @@ void NavierStokes::nodeDensity(State& st) {
   const Grid& g = st.grid;
   Field rho = st.fields.scalar(field::density), r0 = st.fields.scalar("momentum_density");
   voigt::nodeDensity(g, rho, r0, nodeRange(g));
-  st.halo->exchange(r0);
+  exchangeWithVelocity(st, r0); // one message when the predictor's exchange of u is due too
   fillNodeGhostsEven(g, r0);
 }
 
@@ -129,7 +129,7 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   evaluateRhs(st, p, u, rhs, &r0);
   momentumStage1Conservative(r0, rr, r1, u, u0, rhs, dt, mask, val, nodes);
   st.velocityHalosCurrent = false;
-  st.halo->exchange(r1);
+  exchangeWithVelocity(st, r1); // r1 and u1 in one message (refreshGhosts then skips u's)
   fillNodeGhostsEven(g, r1);
   evaluateRhs(st, p, u, rhs, &r1);
   momentumStage2Conservative(r0, r1, rr, u, u0, rhs, dt, mask, val, nodes);
