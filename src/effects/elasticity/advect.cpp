@@ -7,6 +7,8 @@
 //   q1 = q^n + dt R(q^n);  q^{n+1} = (q^n + q1 + dt R(q1)) / 2
 // over the bounding box of the band's cells on this rank. Cells outside the
 // band (psi <= -(kappa + band h)) hold tau_S = 0.
+#include <algorithm>
+
 #include "core/boundary.hpp"
 #include "core/field_names.hpp"
 #include "effects/elasticity/elasticity.hpp"
@@ -26,6 +28,18 @@ void Elasticity::buildLists(State& st) {
   // Owned cells and one ghost layer: the stress divergence at the owned nodes
   // reads the cells around them (navier_stokes fills tau on cellRange(g, 1)).
   nGrown_ = elastic::buildActiveList(g, psi, threshold_, cellRange(g, 1), grown_);
+  Range3 r{{0, 0, 0}, {0, 0, 0}};
+  bool have = false;
+  auto join = [&](const Range3& b) {
+    for (int d = 0; d < 3; ++d) {
+      r.b[d] = have ? std::min(r.b[d], b.b[d]) : b.b[d];
+      r.e[d] = have ? std::max(r.e[d], b.e[d]) : b.e[d];
+    }
+    have = true;
+  };
+  if (nOwned_ > 0) join(grown(ownedBox_, 2));
+  if (nGrown_ > 0) join(elastic::listBox(g, grown_, nGrown_));
+  bandReads_ = r;
 }
 
 void Elasticity::advect(State& st) {
@@ -43,8 +57,10 @@ void Elasticity::advect(State& st) {
   if (any) cellFaceSpeeds(g, u, box, flux_); // u is frozen: once for 6 components x 2 stages
   for (int stage = 0; stage < 2; ++stage) {
     // Collective: every rank, band or not. Stage 0 skips it after the last step's
-    // extension (its whole refresh), when nothing has written tau_S since.
-    if (stage > 0 || !stressHalosCurrent_) refreshStress(st);
+    // extension (its whole refresh), when nothing has written tau_S since. Wall
+    // ghosts only where the band is read: whole fills of six components were half
+    // of all wall-ghost fills on the falling block (perf/README.md, ninth part).
+    if (stage > 0 || !stressHalosCurrent_) refreshBand(st);
     stressHalosCurrent_ = false; // the stage writes tau_S
     if (!any) continue;
     // Face fluxes once each, RK update fused (kernels/advection_faces.hpp).
@@ -55,7 +71,7 @@ void Elasticity::advect(State& st) {
   // tau_S = 0 outside the band: in the box, and where the band was last step.
   elastic::zeroOutsideBand(g, psi, threshold_, t, box, any, prev_, nPrev_, st.fields.scalar("S2"),
                            st.fields.scalar("log10_S2"), 2 * std::log10(1e-6 * mu_));
-  refreshStress(st); // the Stress stage reads one ghost layer
+  refreshBand(st); // the Stress stage reads one ghost layer (bandReads_)
 }
 
 // tau_S where psi <= below_ (extend: 0, blend: -kappa) = the stress above it,

@@ -86,6 +86,8 @@ void Elasticity::refreshStress(State& st) const {
   stressHalosCurrent_ = true;
 }
 
+void Elasticity::refreshBand(State& st) const { refresh(st, solidStressField(st.fields), &bandReads_); }
+
 void Elasticity::refresh(State& st, const SymTensorField& t, const Range3* reads, int depth) const {
   st.halo->exchange(std::vector<Field>(t.c, t.c + 6), depth);
   VOIGT_UNROLL

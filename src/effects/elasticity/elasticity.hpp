@@ -90,7 +90,9 @@ class Elasticity : public Effect {
 
  private:
   void buildLists(State& st);
-  void refreshStress(State& st) const; // sets stressHalosCurrent_
+  void refreshStress(State& st) const; // every ghost; sets stressHalosCurrent_
+  // Rank ghosts, and wall ghosts only within bandReads_ (every cell the band's readers touch).
+  void refreshBand(State& st) const;
   // Halo exchange and wall ghosts; with `reads`, wall ghosts only where those cells lie.
   void refresh(State& st, const SymTensorField& t, const Range3* reads = nullptr, int depth = 0) const;
   void extend(State& st);
@@ -120,6 +122,9 @@ class Elasticity : public Effect {
   elastic::IntList owned_runs_;  // where the updated cells' runs of consecutive cells start (listRuns)
   int nOwned_ = 0, nPrev_ = 0, nGrown_ = 0;
   Range3 ownedBox_{{0, 0, 0}, {0, 0, 0}}; // listBox(owned_), set with the list (buildLists)
+  // ownedBox_ grown by the transport's 2 layers, joined with the grown list's box (the
+  // Stress stage reads tau_S there, ghosts included); empty without band cells.
+  Range3 bandReads_{{0, 0, 0}, {0, 0, 0}};
 
   // Diagnostics and counters for summary.json.
   double energy_ = 0, maxS2_ = 0;
