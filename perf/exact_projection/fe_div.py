@@ -43,7 +43,7 @@ for name, u0 in (('random u*', us),):
         print(f"  {nm:16s}: max |D B u| after / before = {abs(r).max()/abs(G.T@(B@u0)).max():.3e}, L2 {np.linalg.norm(r)/np.linalg.norm(G.T@(B@u0)):.3e}")
 a_, b_, c_ = np.meshgrid(np.arange(1, n), np.arange(1, n), np.arange(1, n), indexing='ij')
 x_, y_, z_ = a_.ravel() / n, b_.ravel() / n, c_.ravel() / n
-for name, comp in (('smooth u* (one mode)', lambda: np.stack([np.sin(np.pi*x_)*np.cos(2*np.pi*y_), np.cos(np.pi*z_)*np.sin(np.pi*y_), np.sin(2*np.pi*x_)*np.sin(np.pi*z_)], 1).ravel())):
+for name, comp in (('smooth u* (one mode)', lambda: np.stack([np.sin(np.pi*x_)*np.cos(2*np.pi*y_), np.cos(np.pi*z_)*np.sin(np.pi*y_), np.sin(2*np.pi*x_)*np.sin(np.pi*z_)], 1).ravel()),):
     u0 = comp()
     print(f"{name}:")
     for nm, A in (('7-point', L7), ('FE (AMReX-like)', LFE)):
