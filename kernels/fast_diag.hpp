@@ -15,13 +15,25 @@
 
 namespace voigt {
 
-using Grid3 = Kokkos::View<double***, Kokkos::LayoutLeft, MemSpace>; // a whole grid, i fastest
-using CGrid3 = Kokkos::View<const double***, Kokkos::LayoutLeft, MemSpace>;
-using Dense = Kokkos::View<double**, Kokkos::LayoutLeft, MemSpace>;   // V_d(node-free index q, mode a)
+// The passes are templates on the value type: double, or float for the mixed-precision
+// preconditioner (fast_diagonalization.hpp: half the bytes and twice the SIMD lanes).
+template <class T>
+using Grid3Of = Kokkos::View<T***, Kokkos::LayoutLeft, MemSpace>; // a whole grid, i fastest
+template <class T>
+using CGrid3Of = Kokkos::View<const T***, Kokkos::LayoutLeft, MemSpace>;
+template <class T>
+using DenseOf = Kokkos::View<T**, Kokkos::LayoutLeft, MemSpace>; // V_d(node-free index q, mode a)
+template <class T>
+struct FdSame { using type = T; }; // a non-deduced T: the input's type follows the output's
+template <class T>
+using CGrid3In = CGrid3Of<typename FdSame<T>::type>;
+using Grid3 = Grid3Of<double>;
+using CGrid3 = CGrid3Of<double>;
+using Dense = DenseOf<double>;
 
 namespace fd_detail {
-template <int Axis>
-KOKKOS_INLINE_FUNCTION double at(const CGrid3& v, int i, int j, int k, int q) {
+template <int Axis, class T>
+KOKKOS_INLINE_FUNCTION T at(const CGrid3Of<T>& v, int i, int j, int k, int q) {
   return Axis == 0 ? v(q, j, k) : Axis == 1 ? v(i, q, k) : v(i, j, q);
 }
 } // namespace fd_detail
@@ -35,8 +47,8 @@ KOKKOS_INLINE_FUNCTION double at(const CGrid3& v, int i, int j, int k, int q) {
 // point-wise form walked to a new slab for every output line: 1.3 GFLOP/s along z at 64^3,
 // perf_kernels FastDiagTransform); Axis 0 as an axpy per x line. Device backends: one output
 // per thread.
-template <int Axis, bool Back>
-inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int nb) {
+template <int Axis, bool Back, class T>
+inline void fdTransform(const CGrid3In<T>& in, const Grid3Of<T>& out, const DenseOf<T>& V, int nb) {
   const int n0 = (int)in.extent(0), n1 = (int)in.extent(1), n2 = (int)in.extent(2);
   const int m = (int)V.extent(0);
 #if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
@@ -45,13 +57,13 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
     Kokkos::parallel_for(
         "fd_transform_slab", Kokkos::RangePolicy<ExecSpace>(0, slabs), KOKKOS_LAMBDA(int s) {
           for (int a = 0; a < m; ++a) {
-            double* o = Axis == 1 ? &out(0, a, s) : &out(0, s, a);
+            T* o = Axis == 1 ? &out(0, a, s) : &out(0, s, a);
 #pragma GCC ivdep
             for (int i = 0; i < n0; ++i) o[i] = 0;
             const int qb = a < nb ? 0 : nb, qe = a < nb ? nb : m;
             for (int q = qb; q < qe; ++q) {
-              const double w = Back ? V(a, q) : V(q, a);
-              const double* x = Axis == 1 ? &in(0, q, s) : &in(0, s, q);
+              const T w = Back ? V(a, q) : V(q, a);
+              const T* x = Axis == 1 ? &in(0, q, s) : &in(0, s, q);
 #pragma GCC ivdep
               for (int i = 0; i < n0; ++i) o[i] += w * x[i];
             }
@@ -62,9 +74,9 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
   if (Axis == 0 && !kOnDevice) { // host backends, x lines: o(r) += W(r, t) x(t), an axpy
     // over contiguous outputs that vectorises (the point-wise form is a dot product, which
     // the compiler may not reassociate); same summation order, so the same bits.
-    Dense W = V; // back: column a of V
+    DenseOf<T> W = V; // back: column a of V
     if (!Back) { // forward: W(a, q) = V(q, a)
-      W = Dense(Kokkos::view_alloc(Kokkos::WithoutInitializing, "fd_VT"), m, m);
+      W = DenseOf<T>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "fd_VT"), m, m);
       Kokkos::parallel_for(
           "fd_transpose", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {m, m}),
           KOKKOS_LAMBDA(int q, int a) { W(a, q) = V(q, a); });
@@ -72,14 +84,14 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
     Kokkos::parallel_for(
         "fd_transform_line", Kokkos::RangePolicy<ExecSpace>(0, n1 * n2), KOKKOS_LAMBDA(int l) {
           const int j = l % n1, k = l / n1;
-          double* o = &out(0, j, k);
-          const double* x = &in(0, j, k);
+          T* o = &out(0, j, k);
+          const T* x = &in(0, j, k);
 #pragma GCC ivdep
           for (int r = 0; r < m; ++r) o[r] = 0;
           for (int t = 0; t < m; ++t) {
             const int rb = t < nb ? 0 : nb, re = t < nb ? nb : m;
-            const double w = x[t];
-            const double* col = &W(0, t);
+            const T w = x[t];
+            const T* col = &W(0, t);
 #pragma GCC ivdep
             for (int r = rb; r < re; ++r) o[r] += col[r] * w;
           }
@@ -92,7 +104,7 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
     const int idx[3] = {i, j, k};
     const int a = idx[Axis];
     const int qb = a < nb ? 0 : nb, qe = a < nb ? nb : m;
-    double s = 0;
+    T s = 0;
     for (int q = qb; q < qe; ++q) s += (Back ? V(a, q) : V(q, a)) * fd_detail::at<Axis>(in, i, j, k, q);
     out(i, j, k) = s;
   });
@@ -103,22 +115,22 @@ inline void fdTransform(const CGrid3& in, const Grid3& out, const Dense& V, int 
 // On a mirror-symmetric axis the eigenvectors are even or odd, so after folding the
 // transform is block diagonal (fdTransform's nb = h). fdUnfold is its inverse's transpose
 // partner: out(q) = in(q) + in(h+q), out(m-1-q) = in(q) - in(h+q), the middle copied.
-template <int Axis>
-inline void fdFold(const CGrid3& in, const Grid3& out) {
+template <int Axis, class T>
+inline void fdFold(const CGrid3In<T>& in, const Grid3Of<T>& out) {
   const int m = (int)in.extent(Axis), h = (m + 1) / 2, lo = m / 2;
   const Range3 all{{0, 0, 0}, {(int)in.extent(0), (int)in.extent(1), (int)in.extent(2)}};
   for_each3("fd_fold", all, KOKKOS_LAMBDA(int i, int j, int k) {
     const int idx[3] = {i, j, k};
     const int t = idx[Axis];
     const int q = t < lo ? t : t >= h ? t - h : t; // t = h - 1 = middle for odd m
-    const double a = fd_detail::at<Axis>(in, i, j, k, q);
-    const double b = (t < h && t >= lo) ? 0.0 : fd_detail::at<Axis>(in, i, j, k, m - 1 - q);
+    const T a = fd_detail::at<Axis>(in, i, j, k, q);
+    const T b = (t < h && t >= lo) ? T(0) : fd_detail::at<Axis>(in, i, j, k, m - 1 - q);
     out(i, j, k) = t < h ? a + b : a - b;
   });
 }
 
-template <int Axis>
-inline void fdUnfold(const CGrid3& in, const Grid3& out) {
+template <int Axis, class T>
+inline void fdUnfold(const CGrid3In<T>& in, const Grid3Of<T>& out) {
   const int m = (int)in.extent(Axis), h = (m + 1) / 2, lo = m / 2;
   const Range3 all{{0, 0, 0}, {(int)in.extent(0), (int)in.extent(1), (int)in.extent(2)}};
   for_each3("fd_unfold", all, KOKKOS_LAMBDA(int i, int j, int k) {
@@ -126,16 +138,41 @@ inline void fdUnfold(const CGrid3& in, const Grid3& out) {
     const int t = idx[Axis];
     const bool middle = (m & 1) && t == lo;
     const int q = t < lo ? t : middle ? t : m - 1 - t;
-    const double e = fd_detail::at<Axis>(in, i, j, k, q);
-    const double o = middle ? 0.0 : fd_detail::at<Axis>(in, i, j, k, h + q);
+    const T e = fd_detail::at<Axis>(in, i, j, k, q);
+    const T o = middle ? T(0) : fd_detail::at<Axis>(in, i, j, k, h + q);
     out(i, j, k) = (t < lo || middle) ? e + o : e - o;
   });
 }
 
 // out = inv * in (inv: 1/eigenvalue of A0, 0 on its null modes).
-inline void fdScale(const CGrid3& in, const CGrid3& inv, const Grid3& out) {
+template <class T>
+inline void fdScale(const CGrid3In<T>& in, const CGrid3In<T>& inv, const Grid3Of<T>& out) {
   const Range3 all{{0, 0, 0}, {(int)in.extent(0), (int)in.extent(1), (int)in.extent(2)}};
   for_each3("fd_scale", all, KOKKOS_LAMBDA(int i, int j, int k) { out(i, j, k) = inv(i, j, k) * in(i, j, k); });
+}
+
+// out = in, converted (double <-> float at the ends of the mixed-precision passes).
+template <class TI, class TO>
+inline void fdConvert(const CGrid3Of<TI>& in, const Grid3Of<TO>& out) {
+  const Range3 all{{0, 0, 0}, {(int)in.extent(0), (int)in.extent(1), (int)in.extent(2)}};
+  for_each3("fd_convert", all, KOKKOS_LAMBDA(int i, int j, int k) { out(i, j, k) = TO(in(i, j, k)); });
+}
+
+// out(r) = in(r) converted over n rows (the preconditioner's input and output vectors).
+template <class TI, class TO>
+inline void fdConvertRows(const Kokkos::View<const TI*, Kokkos::LayoutLeft, MemSpace>& in,
+                          const Kokkos::View<TO*, Kokkos::LayoutLeft, MemSpace>& out, size_t n) {
+  Kokkos::parallel_for(
+      "fd_convert_rows", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(size_t r) { out(r) = TO(in(r)); });
+}
+
+// dst = src converted (the eigenvectors in the passes' precision).
+template <class T>
+inline void fdConvertDense(const Dense& src, const DenseOf<T>& dst) {
+  const int m = (int)src.extent(0), n = (int)src.extent(1);
+  Kokkos::parallel_for(
+      "fd_convert_V", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {m, n}),
+      KOKKOS_LAMBDA(int q, int a) { dst(q, a) = T(src(q, a)); });
 }
 
 // inv(a,b,c) = 1 / sum_d lambda_d/h_d^2 prod_{e != d} (1 - lambda_e/4) for the modes

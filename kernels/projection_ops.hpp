@@ -145,6 +145,23 @@ inline void shiftedCopy(const Field& src, const Field& dst, double c) {
             KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = src(i, j, k) + c; });
 }
 
+// The CG initial guess from the pressure rate of the last steps (f1 = dp/dt of the last,
+// f2 of the one before): dp = dt (2 f1 - f2), linear in time, or dt f1 (only one rate yet).
+inline void extrapolateIncrement(const Field& f1, const Field& f2, const Field& dp, double dt, bool linear,
+                                 Range3 cells) {
+  const double a = linear ? 2 * dt : dt, b = linear ? dt : 0;
+  for_each3("extrapolate_increment", cells,
+            KOKKOS_LAMBDA(int i, int j, int k) { dp(i, j, k) = a * f1(i, j, k) - b * f2(i, j, k); });
+}
+
+// After a solve: f2 = f1, f1 = dp / dt.
+inline void shiftPressureRates(const Field& f1, const Field& f2, const Field& dp, double dt, Range3 cells) {
+  for_each3("shift_pressure_rates", cells, KOKKOS_LAMBDA(int i, int j, int k) {
+    f2(i, j, k) = f1(i, j, k);
+    f1(i, j, k) = dp(i, j, k) / dt;
+  });
+}
+
 // dst += src (the pressure update p += dp).
 inline void addTo(const Field& src, const Field& dst, Range3 cells) {
   for_each3("add_to", cells, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) += src(i, j, k); });

@@ -305,6 +305,18 @@ inline double globalSum(const Grid& g, double local) {
   return out;
 }
 
+// Mean |f| over r on all ranks (cells of equal volume): the divergence's L1 norm, the
+// measure OpenFOAM's "sum local" continuity error takes times dt (perf/peers).
+inline double globalMeanAbs(const Grid& g, const Field& f, Range3 r) {
+  double local[2] = {0, double(r.e[0] - r.b[0]) * (r.e[1] - r.b[1]) * (r.e[2] - r.b[2])};
+  reduce_rows(
+      "sum_abs", r, KOKKOS_LAMBDA(int i, int j, int k, double& acc) { acc += km::fabs(f(i, j, k)); },
+      local[0]);
+  double out[2] = {0, 0};
+  MPI_Allreduce(local, out, 2, MPI_DOUBLE, MPI_SUM, g.comm);
+  return out[1] > 0 ? out[0] / out[1] : 0;
+}
+
 // Kinetic energy 0.5 sum rho_n |u_n|^2 w_n dV over owned nodes (dual-cell volumes).
 inline double kineticEnergy(const Grid& g, const VecField& u, const Field& rhoCell) {
   GridGeom G(g);

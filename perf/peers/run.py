@@ -10,6 +10,7 @@ describes what is measured and what differs between the two codes.
 
     perf/peers/run                      # ranks 1 and 2, 2 repeats, 50 steps
     perf/peers/run --ranks 2 --repeats 1 --steps 5 --variants scene   # a quick check
+    perf/peers/run --variants scene,exact-1e-3,exact-1e-4             # the exact operator at a tolerance
 """
 import argparse
 import json
@@ -35,6 +36,23 @@ VARIANTS = {
     "defaults": "the same scene without its projection section: Voigt's defaults, exact (27-point) "
                 "operator, fast diagonalization (the exact operator's default), tolerance 1e-8",
 }
+EXACT = "exact-"  # exact-TOL: the scene with the exact operator at tolerance TOL, e.g. exact-1e-3
+
+
+def describe(v):
+    if v.startswith(EXACT):
+        return ("the scene with the exact (27-point) operator, fast diagonalization, tolerance %s "
+                "(Belos: relative to the right-hand side's norm)" % v[len(EXACT):])
+    return VARIANTS[v]
+
+
+def variant_sets(v):
+    if v.startswith(EXACT):
+        return ["projection.operator=exact", "projection.preconditioner=fast_diagonalization",
+                "projection.tolerance=" + v[len(EXACT):]]
+    return []
+
+
 log = launch.log
 
 
@@ -72,8 +90,8 @@ def defaults_scene(top):
     return p
 
 
-def run_voigt(binary, scene, ranks, steps, out, logf, timeout):
-    cmd = launch.voigt_cmd(binary, scene, out, ["output.enabled=false"], ranks=ranks, steps=steps)
+def run_voigt(binary, scene, ranks, steps, out, logf, timeout, sets=()):
+    cmd = launch.voigt_cmd(binary, scene, out, ["output.enabled=false"] + list(sets), ranks=ranks, steps=steps)
     rc, wall = launch.run_logged(cmd, logf, timeout)
     return cmd, rc, wall
 
@@ -83,6 +101,7 @@ def parse_voigt(out):
     cols = series.timeseries(out)
     div, dts, its = cols.get("max_divergence", []), cols.get("dt", []), cols.get("poisson_iterations", [])
     pred, drift = cols.get("max_divergence_predicted", []), cols.get("volume_drift", [])
+    mean = cols.get("mean_divergence", [])
     return {
         "steps": s.get("steps_this_run"),
         "loop_s": s.get("wall_seconds"),
@@ -92,6 +111,8 @@ def parse_voigt(out):
         "max_divergence_dt_max": max(d * t for d, t in zip(div, dts)) if div else None,
         "max_divergence_dt_last": div[-1] * dts[-1] if div else None,
         "max_divergence_predicted_max": max(pred) if pred else None,
+        "mean_divergence_dt_max": max(d * t for d, t in zip(mean, dts)) if mean else None,
+        "mean_divergence_dt_last": mean[-1] * dts[-1] if mean else None,
         "volume_drift_last": drift[-1] if drift else None,
         "poisson_iterations_mean": (sum(its) / len(its)) if its else None,
         "poisson_operator": (s.get("poisson") or {}).get("operator"),
@@ -172,9 +193,9 @@ def make_report(meta, runs, ranks_list, codes):
              "steps), and the max over every corrector (the first correctors of a step are larger); "
              "phase-1 volume fraction at the first and last step (mass of water, 6 digits as printed). "
              "Voigt: `max_divergence` of `timeseries.csv` (1/s: the max over cells of |div u| after the "
-             "projection, last step and max over steps), times dt (dimensionless, but a max over cells, not "
-             "a mean: it is larger than a mean of the same field); `volume_drift` (relative water volume "
-             "change) at the last step.")
+             "projection, last step and max over steps); in the x dt columns `mean_divergence` (the mean "
+             "over cells of |div u|, the measure of interFoam's sum local) times dt, and under other the "
+             "max times dt; `volume_drift` (relative water volume change) at the last step.")
     L.append("")
     L.append("| code | ranks | error last | error max | x dt last | x dt max | other | mass |")
     L.append("|---|---|---|---|---|---|---|---|")
@@ -194,15 +215,17 @@ def make_report(meta, runs, ranks_list, codes):
                              e(m["continuity_any_corrector_max"]), e(m["continuity_cumulative_last"]),
                              fmt(m["p_rgh_iterations_per_step"], 3), mass))
             else:
-                L.append("| %s | %d | %s 1/s | %s 1/s | %s | %s | before projection max %s 1/s; "
+                L.append("| %s | %d | %s 1/s | %s 1/s | %s (mean) | %s (mean) | max x dt last %s, max %s; "
+                         "before projection max %s 1/s; "
                          "%s operator, Poisson its/step %s; decomposition %s | volume_drift %s |" % (
                              c, ranks, e(m["max_divergence_last"]), e(m["max_divergence_max"]),
+                             e(m.get("mean_divergence_dt_last")), e(m.get("mean_divergence_dt_max")),
                              e(m["max_divergence_dt_last"]), e(m["max_divergence_dt_max"]),
                              e(m["max_divergence_predicted_max"]), m["poisson_operator"],
                              fmt(m["poisson_iterations_mean"], 3), m["decomposition"],
                              e(m["volume_drift_last"])))
     L.append("")
-    L.append("Voigt variants: " + "; ".join("`%s`: %s" % (v, VARIANTS[v]) for v in meta["variants"]) + ".")
+    L.append("Voigt variants: " + "; ".join("`%s`: %s" % (v, describe(v)) for v in meta["variants"]) + ".")
     failed = [r for r in runs if not r["ok"]]
     if failed:
         L += failed_runs(("%s, %d ranks, repeat %d: exit %s; `%s`; log `%s`" % (
@@ -221,7 +244,8 @@ def main():
     ap.add_argument("--voigt", default=os.path.join(ROOT, "build", "voigt"),
                     help="voigt binary (default build/voigt; built with scripts/build when missing)")
     ap.add_argument("--variants", default="scene,defaults",
-                    help="Voigt variants, comma-separated, of: %s" % ", ".join(VARIANTS))
+                    help="Voigt variants, comma-separated, of: %s, %sTOL (e.g. exact-1e-3)" % (
+                        ", ".join(VARIANTS), EXACT))
     ap.add_argument("--timeout", type=int, default=1800, help="seconds per run")
     ap.add_argument("--no-install", action="store_true", help="fail instead of installing openfoam")
     a = ap.parse_args()
@@ -231,8 +255,8 @@ def main():
         die("--ranks: comma-separated integers")
     variants = [v for v in a.variants.split(",") if v]
     for v in variants:
-        if v not in VARIANTS:
-            die("--variants: unknown %r (known: %s)" % (v, ", ".join(VARIANTS)))
+        if v not in VARIANTS and not (v.startswith(EXACT) and re.fullmatch(r"[0-9.]+(e-?[0-9]+)?", v[len(EXACT):])):
+            die("--variants: unknown %r (known: %s, %sTOL)" % (v, ", ".join(VARIANTS), EXACT))
     if a.steps < 1 or a.repeats < 1 or not ranks_list or min(ranks_list) < 1:
         die("--steps, --repeats and --ranks must be positive")
     top = os.path.abspath(a.out) if a.out else tempfile.mkdtemp(prefix="voigt-peers-")
@@ -241,7 +265,7 @@ def main():
     ensure_openfoam(a.no_install)
     env = foam_env()
     voigt = ensure_voigt(os.path.abspath(a.voigt), top)
-    scenes = {"scene": SCENE}
+    scenes = {v: SCENE for v in variants}
     if "defaults" in variants:
         scenes["defaults"] = defaults_scene(top)
     deb = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "openfoam"], capture_output=True, text=True)
@@ -269,8 +293,9 @@ def main():
                     m = parse_foam_log(logf) if os.path.exists(logf) else {}
                 else:
                     out = os.path.join(top, tag)
-                    cmd, rc, wall = run_voigt(voigt, scenes[c[len("voigt-"):]], ranks, a.steps, out, logf,
-                                              a.timeout)
+                    v = c[len("voigt-"):]
+                    cmd, rc, wall = run_voigt(voigt, scenes[v], ranks, a.steps, out, logf, a.timeout,
+                                              variant_sets(v))
                     r.update(cmd=cmd, rc=rc, wall_s=wall)
                     try:
                         m = parse_voigt(out)

@@ -50,11 +50,15 @@ class FieldStore {
     // before anything is written includes it (StepEngine::checkFinite). A field that
     // any effect declares as state is state.
     bool derived = false;
+    // State that a checkpoint written before the field existed may lack: a restart from
+    // one leaves it zero (the owner's saved state says whether it is valid) instead of failing.
+    bool optionalOnRestart = false;
   };
 
   void declare(const std::string& name, Centring c, int components, const std::string& owner,
                bool isInt = false);
   void declareDerived(const std::string& name, Centring c, int components, const std::string& owner);
+  void markOptionalOnRestart(const std::string& name) { decls_.at(name).optionalOnRestart = true; }
   bool declared(const std::string& name) const { return decls_.count(name) > 0; }
   const std::map<std::string, Decl>& decls() const { return decls_; }
   // Bytes all declared fields take on this rank.

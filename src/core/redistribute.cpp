@@ -25,8 +25,9 @@ Box intersect(const Box& a, const Box& b) {
 
 // Copies the part `p` between a box array (LayoutLeft in `owner`'s extents) and a packed
 // buffer (LayoutLeft in p's extents). toBuf: array -> buffer.
-void copyPart(const Box& owner, const Box& p, double* arr, double* buf, bool toBuf) {
-  using HostGrid = Kokkos::View<double***, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+template <class T>
+void copyPart(const Box& owner, const Box& p, T* arr, T* buf, bool toBuf) {
+  using HostGrid = Kokkos::View<T***, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
   const HostGrid A(arr, owner.n[0], owner.n[1], owner.n[2]), B(buf, p.n[0], p.n[1], p.n[2]);
   auto range = [&](int d) {
     const int o = p.lo[d] - owner.lo[d];
@@ -68,7 +69,8 @@ Redistribute::Redistribute(MPI_Comm comm, const std::vector<Box>& src, const std
   recvBuf_.resize(std::max<size_t>(1, recvDispl_.back() + recvCount_.back()));
 }
 
-void Redistribute::move(const double* in, double* out, bool reverse) const {
+template <class T>
+void Redistribute::move(const T* in, T* out, bool reverse) const {
   // Reverse: the roles of the send and receive lists swap (same counts, same buffers).
   const auto& sends = reverse ? recvs_ : sends_;
   const auto& recvs = reverse ? sends_ : recvs_;
@@ -81,10 +83,13 @@ void Redistribute::move(const double* in, double* out, bool reverse) const {
   const Box& from = reverse ? myDst_ : mySrc_;
   const Box& to = reverse ? mySrc_ : myDst_;
   for (size_t p = 0; p < sends.size(); ++p)
-    if (sc[p] > 0) copyPart(from, sends[p].box, const_cast<double*>(in), sb.data() + sd[p], true);
-  MPI_Alltoallv(sb.data(), sc.data(), sd.data(), MPI_DOUBLE, rb.data(), rc.data(), rd.data(), MPI_DOUBLE, comm_);
+    if (sc[p] > 0) copyPart(from, sends[p].box, const_cast<T*>(in), reinterpret_cast<T*>(sb.data()) + sd[p], true);
+  const MPI_Datatype type = sizeof(T) == sizeof(float) ? MPI_FLOAT : MPI_DOUBLE;
+  MPI_Alltoallv(sb.data(), sc.data(), sd.data(), type, rb.data(), rc.data(), rd.data(), type, comm_);
   for (size_t p = 0; p < recvs.size(); ++p)
-    if (rc[p] > 0) copyPart(to, recvs[p].box, out, rb.data() + rd[p], false);
+    if (rc[p] > 0) copyPart(to, recvs[p].box, out, reinterpret_cast<T*>(rb.data()) + rd[p], false);
 }
+template void Redistribute::move(const double*, double*, bool) const;
+template void Redistribute::move(const float*, float*, bool) const;
 
 } // namespace voigt

@@ -21,21 +21,25 @@ class Redistribute {
   // src[p], dst[p]: every rank's box before and after (the same lists on every rank).
   Redistribute(MPI_Comm comm, const std::vector<Box>& src, const std::vector<Box>& dst);
   // out (this rank's dst box) = in (this rank's src box) moved. Host pointers. Collective.
-  void forward(const double* in, double* out) const { move(in, out, false); }
+  // T: double or float.
+  template <class T>
+  void forward(const T* in, T* out) const { move(in, out, false); }
   // The reverse move: in (dst layout) -> out (src layout).
-  void backward(const double* in, double* out) const { move(in, out, true); }
+  template <class T>
+  void backward(const T* in, T* out) const { move(in, out, true); }
 
  private:
   struct Part {
     Box box;      // intersection, global cells
     int rank;
   };
-  void move(const double* in, double* out, bool reverse) const;
+  template <class T>
+  void move(const T* in, T* out, bool reverse) const;
   MPI_Comm comm_;
   Box mySrc_, myDst_;
   std::vector<Part> sends_, recvs_; // forward direction: what this rank sends and receives
   std::vector<int> sendCount_, sendDispl_, recvCount_, recvDispl_;
-  mutable std::vector<double> sendBuf_, recvBuf_;
+  mutable std::vector<double> sendBuf_, recvBuf_; // also hold floats (half the bytes)
 };
 
 } // namespace voigt

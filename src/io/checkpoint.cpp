@@ -317,6 +317,7 @@ nlohmann::json readCheckpoint(const Grid& g, FieldStore& fields, const std::stri
   h5::Id grp(H5Gopen2(file, "fields", H5P_DEFAULT), H5Gclose, "group open 'fields'", path);
   for (auto& n : fields.allocatedNames()) {
     const auto& d = fields.decls().at(n);
+    if (!fj.contains(n) && d.optionalOnRestart) continue; // zero, as allocated
     if (!fj.contains(n))
       throw std::runtime_error(path + ": field '" + n + "' is not in the checkpoint (written by a run with other effects?)");
     const auto& f = fj.at(n);

@@ -265,6 +265,11 @@ void readSettings(const Section& top, Scene& sc) {
   P.chebyshevDegree = int(p.integer("chebyshev_degree", P.chebyshevDegree, 1, 20));
   P.coarseSweeps = int(p.integer("multigrid_coarse_sweeps", P.coarseSweeps, 1, 1000));
   P.onCap = p.choice("on_cap", P.onCap, {"warn", "stop"});
+  P.fdPrecision = p.choice("fd_precision", P.fdPrecision, {"single", "double"});
+  P.initialGuessAuto = !p.has("initial_guess");
+  const bool fd = P.op == ProjectionCfg::Op::Exact && P.preconditioner == "fast_diagonalization";
+  P.initialGuess = p.choice("initial_guess", fd ? "extrapolate" : "previous",
+                            {"previous", "extrapolate"});
   p.finish();
 
   Section a = top.section("advection");

@@ -100,7 +100,8 @@ void split(int m, int size, int p, int& lo, int& n) {
 }
 } // namespace
 
-FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm) : g_(g), comm_(comm) {
+FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm, bool single)
+    : g_(g), single_(single), comm_(comm) {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
   for (int d = 0; d < 3; ++d) n_[d] = g.n[d];
@@ -124,20 +125,9 @@ FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm) : g_(g), 
   if (size_ > 1) {
     toZ_ = std::make_unique<Redistribute>(comm_, blocks, zs);
     zToY_ = std::make_unique<Redistribute>(comm_, zs, ys);
-    z1_ = Grid3("fd_z1", zs_.n[0], zs_.n[1], zs_.n[2]);
-    z2_ = Grid3("fd_z2", zs_.n[0], zs_.n[1], zs_.n[2]);
-    y1_ = Grid3("fd_y1", ys_.n[0], ys_.n[1], ys_.n[2]);
-    y2_ = Grid3("fd_y2", ys_.n[0], ys_.n[1], ys_.n[2]);
-    zh_ = Kokkos::create_mirror_view(z1_);
-    yh_ = Kokkos::create_mirror_view(y1_);
-    rowsH_.resize(g.cellsOwned());
-  } else {
-    z1_ = Grid3("fd_t1", n_[0], n_[1], n_[2]);
-    z2_ = Grid3("fd_t2", n_[0], n_[1], n_[2]);
-    y1_ = z1_;
-    y2_ = z2_;
   }
-  inv_ = Grid3("fd_inverse_eigenvalues", ys_.n[0], ys_.n[1], ys_.n[2]);
+  if (single_) allocate(f_);
+  else allocate(d_);
 }
 
 void FastDiagonalization::setup(const VecField& coef) {
@@ -221,87 +211,11 @@ void FastDiagonalization::setup(const VecField& coef) {
         const double m0 = 1 - 0.25 * l0, m1 = 1 - 0.25 * l1, m2 = 1 - 0.25 * l2;
         dmax = std::max(dmax, ih[0] * l0 * m1 * m2 + ih[1] * m0 * l1 * m2 + ih[2] * m0 * m1 * l2);
       }
-  fdInverseEigenvalues(inv_, lam, ih[0], ih[1], ih[2], ys_.lo[1], 1e-10 * dmax);
+  Grid3 inv("fd_inverse_eigenvalues", ys_.n[0], ys_.n[1], ys_.n[2]);
+  fdInverseEigenvalues(inv, lam, ih[0], ih[1], ih[2], ys_.lo[1], 1e-10 * dmax);
   // The passes of one application (they depend on which axes are folded): built here, once.
-  opsXY_ = forwardXY();
-  opsZ_ = zAndScale();
-  opsYX_ = backYX();
-  opsAll_ = opsXY_;
-  opsAll_.insert(opsAll_.end(), opsZ_.begin(), opsZ_.end());
-  opsAll_.insert(opsAll_.end(), opsYX_.begin(), opsYX_.end());
-}
-
-// Runs ops one after another from src to dst through the work buffers A and B (each op
-// reads one array and writes another; src and dst may be A or B).
-void FastDiagonalization::chain(const std::vector<Op>& ops, const CGrid3& src, const Grid3& dst, const Grid3& A,
-                                const Grid3& B) const {
-  const double* cur = src.data();
-  CGrid3 in = src;
-  for (size_t i = 0; i < ops.size(); ++i) {
-    Grid3 out = i + 1 == ops.size() ? dst : (cur == A.data() ? B : A);
-    const bool alias = out.data() == cur;
-    if (alias) out = cur == A.data() ? B : A;
-    ops[i](in, out);
-    if (alias) Kokkos::deep_copy(dst, out), out = dst;
-    in = out;
-    cur = out.data();
-  }
-  Kokkos::fence();
-}
-
-std::vector<FastDiagonalization::Op> FastDiagonalization::forwardXY() const {
-  std::vector<Op> ops;
-  if (nb_[0] < n_[0]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdFold<0>(i, o); });
-  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<0, false>(i, o, V_[0], nb_[0]); });
-  if (nb_[1] < n_[1]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdFold<1>(i, o); });
-  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<1, false>(i, o, V_[1], nb_[1]); });
-  return ops;
-}
-
-std::vector<FastDiagonalization::Op> FastDiagonalization::zAndScale() const {
-  std::vector<Op> ops;
-  if (nb_[2] < n_[2]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdFold<2>(i, o); });
-  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<2, false>(i, o, V_[2], nb_[2]); });
-  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdScale(i, inv_, o); });
-  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<2, true>(i, o, V_[2], nb_[2]); });
-  if (nb_[2] < n_[2]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdUnfold<2>(i, o); });
-  return ops;
-}
-
-std::vector<FastDiagonalization::Op> FastDiagonalization::backYX() const {
-  std::vector<Op> ops;
-  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<1, true>(i, o, V_[1], nb_[1]); });
-  if (nb_[1] < n_[1]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdUnfold<1>(i, o); });
-  ops.push_back([this](const CGrid3& i, const Grid3& o) { fdTransform<0, true>(i, o, V_[0], nb_[0]); });
-  if (nb_[0] < n_[0]) ops.push_back([](const CGrid3& i, const Grid3& o) { fdUnfold<0>(i, o); });
-  return ops;
-}
-
-void FastDiagonalization::apply(const ConstRowVector& r, const RowVector& z) const {
-  if (size_ == 1) {
-    const CGrid3 in(r.data(), n_[0], n_[1], n_[2]);
-    const Grid3 out(z.data(), n_[0], n_[1], n_[2]);
-    chain(opsAll_, in, out, z1_, z2_);
-    return;
-  }
-  // Rows are this rank's block, i fastest: the block layout Redistribute expects.
-  const Kokkos::View<double*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> rh(rowsH_.data(),
-                                                                                                rowsH_.size());
-  Kokkos::deep_copy(rh, r);
-  toZ_->forward(rowsH_.data(), zh_.data());
-  Kokkos::deep_copy(z1_, zh_);
-  chain(opsXY_, z1_, z2_, z1_, z2_);
-  Kokkos::deep_copy(zh_, z2_);
-  zToY_->forward(zh_.data(), yh_.data());
-  Kokkos::deep_copy(y1_, yh_);
-  chain(opsZ_, y1_, y2_, y1_, y2_);
-  Kokkos::deep_copy(yh_, y2_);
-  zToY_->backward(yh_.data(), zh_.data());
-  Kokkos::deep_copy(z1_, zh_);
-  chain(opsYX_, z1_, z2_, z1_, z2_);
-  Kokkos::deep_copy(zh_, z2_);
-  toZ_->backward(zh_.data(), rowsH_.data());
-  Kokkos::deep_copy(z, rh);
+  if (single_) build(f_, inv);
+  else build(d_, inv);
 }
 
 } // namespace voigt

@@ -64,7 +64,7 @@ class TpetraPoisson final : public PoissonSolver {
     if (cfg.preconditioner == "fast_diagonalization") {
       if (!exact_)
         throw std::invalid_argument("projection.preconditioner: fast_diagonalization needs operator: exact");
-      fd_ = std::make_unique<FastDiagonalization>(g, comm_);
+      fd_ = std::make_unique<FastDiagonalization>(g, comm_, cfg.fdSingle);
     }
     buildSolver();
   }

@@ -22,6 +22,7 @@ struct PoissonSettings {
   std::string multigridSmoother = "sgs"; // fine-level smoother: sgs | chebyshev
   int chebyshevDegree = 2;
   int coarseSweeps = 10;                 // SGS sweeps on the coarsest multigrid level
+  bool fdSingle = true;                  // fast diagonalization's passes in float
 };
 
 } // namespace voigt

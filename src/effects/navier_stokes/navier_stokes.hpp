@@ -25,10 +25,12 @@ class NavierStokes : public Effect {
   void saveState(nlohmann::json& j) const override {
     j["initial_pressure_done"] = initialPressureDone_;
     j["pressure_reference"] = pRef_;
+    j["pressure_rate_history"] = rateHistory_;
   }
   void loadState(const nlohmann::json& j) override {
     initialPressureDone_ = j.value("initial_pressure_done", initialPressureDone_);
     pRef_ = j.value("pressure_reference", pRef_);
+    rateHistory_ = j.value("pressure_rate_history", 0); // absent: a checkpoint from before the rates
   }
   void restored(State& st) override;
 
@@ -53,6 +55,7 @@ class NavierStokes : public Effect {
   Pipeline* pipeline_ = nullptr;
   double pRef_ = 0; // outflow pressure: stored p is relative to it
   bool initialPressureDone_ = false;
+  int rateHistory_ = 0; // pressure rates stored (0-2), for initial_guess: extrapolate
 };
 
 SymTensorField stressField(const FieldStore& f);

@@ -62,8 +62,20 @@ void NavierStokes::project(State& st) {
   divergence(g, u, div, cells);
   st.diag["max_divergence_predicted"] = globalMaxAbs(g, div, cells);
   poissonRhs(div, rhs, dt, cells);
-  // dp of the previous step is the initial guess.
+  // The initial guess: dp of the previous step, or (initial_guess: extrapolate) dt times the
+  // pressure rate extrapolated from the last two steps.
+  const bool extrapolate = scene_->projection.initialGuess == "extrapolate";
+  Field f1, f2;
+  if (extrapolate) {
+    f1 = st.fields.scalar("pressure_rate");
+    f2 = st.fields.scalar("pressure_rate_old");
+    if (rateHistory_ > 0) extrapolateIncrement(f1, f2, dp, dt, rateHistory_ > 1, cells);
+  }
   const PoissonStats s = solver_->solve(rhs, dp);
+  if (extrapolate) {
+    shiftPressureRates(f1, f2, dp, dt, cells);
+    rateHistory_ = std::min(rateHistory_ + 1, 2);
+  }
   addTo(dp, p, cells);
   st.halo->exchange(std::vector<Field>{dp, p}); // one exchange for both: subtractGradient reads dp's ghosts
   subtractGradient(g, dp, coef, dt, u, nodeRange(g));
@@ -73,6 +85,7 @@ void NavierStokes::project(State& st) {
 
   divergence(g, u, div, cells);
   st.diag["max_divergence"] = globalMaxAbs(g, div, cells);
+  st.diag["mean_divergence"] = globalMeanAbs(g, div, cells);
   st.diag["poisson_iterations"] = s.iterations;
   st.diag["poisson_residual"] = s.relResidual;
   st.diag["poisson_incompatibility"] = s.incompatibility;

@@ -63,6 +63,11 @@ void NavierStokes::declareFields(FieldStore& f) const {
   for (const char* n : {"tau_xx", "tau_yy", "tau_zz", "tau_xy", "tau_yz", "tau_zx"})
     f.declareDerived(n, Centring::Cell, 1, me);
   for (const char* n : {field::pressure, "pressure_increment"}) f.declare(n, Centring::Cell, 1, me);
+  if (scene_->projection.initialGuess == "extrapolate")
+    for (const char* n : {"pressure_rate", "pressure_rate_old"}) {
+      f.declare(n, Centring::Cell, 1, me);
+      f.markOptionalOnRestart(n); // checkpoints from before them: rateHistory_ 0, rebuilt in two steps
+    }
   for (const char* n : {"poisson_rhs", "divergence", field::density, field::viscosity})
     f.declareDerived(n, Centring::Cell, 1, me);
 }
@@ -129,6 +134,7 @@ PoissonSettings poissonSettings(const ProjectionCfg& P) {
   s.multigridSmoother = P.multigridSmoother;
   s.chebyshevDegree = P.chebyshevDegree;
   s.coarseSweeps = P.coarseSweeps;
+  s.fdSingle = P.fdPrecision == "single";
   return s;
 }
 
@@ -144,7 +150,7 @@ std::string solverSummary(const ProjectionCfg& P) {
     s += ", coarse sweeps " + std::to_string(P.coarseSweeps);
     s += ")";
   } else if (P.preconditioner == "fast_diagonalization") {
-    s += " (the one-density exact inverse)";
+    s += " (the one-density exact inverse, " + P.fdPrecision + " precision)";
   } else if (P.preconditioner != "none") {
     s += " (" + std::to_string(P.sweeps) + " sweep" + (P.sweeps > 1 ? "s" : "") + ")";
   }
@@ -154,7 +160,8 @@ std::string solverSummary(const ProjectionCfg& P) {
   char tol[32];
   std::snprintf(tol, sizeof tol, "%g", P.tolerance);
   return s + ", tolerance " + tol + ", at most " + std::to_string(P.maxIterations) + " iterations (then " +
-         (P.onCap == "stop" ? "stop the run" : "warn and go on") + ")";
+         (P.onCap == "stop" ? "stop the run" : "warn and go on") + "), initial guess " + P.initialGuess +
+         (P.initialGuessAuto ? " [default with this preconditioner]" : "");
 }
 
 DtLimit NavierStokes::dtLimit(const State& st) const {
