@@ -5,7 +5,8 @@ interleaved (A, B, C, ..., A, B, C, ...), from the scene's start or from a check
 (the interface is where the projection is hard, and a developed flow has more of it).
 
     perf/exact_projection/tolerance_sweep SCENE [--set K=V ...] [--restart-from CKPT] --steps N
-        [--ranks R] [--tolerances 1e-2,1e-3,1e-4,1e-8] [--precisions single,double] [--repeats 2] [--out DIR]
+        [--ranks R] [--tolerances 1e-2,1e-3,1e-4,1e-8] [--precisions single,double]
+        [--initial-guesses previous,extrapolate] [--repeats 2] [--out DIR]
 
 Prints one markdown row per variant: CG iterations a step (mean, max), the whole step's wall
 seconds (median over repeats, `wall_seconds` of summary.json / steps) and its ratio to the
@@ -25,13 +26,16 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..
 from voigt_post import launch, series  # noqa: E402
 
 
-def variants(tols, precisions):
+def variants(tols, precisions, guesses):
     out = [("scene", [])]
     for t in tols:
         for p in precisions:
-            name = "exact %s" % t + (" %s" % p if len(precisions) > 1 else "")
-            out.append((name, ["projection.operator=exact", "projection.preconditioner=fast_diagonalization",
-                               "projection.tolerance=%s" % t, "projection.fd_precision=%s" % p]))
+            for g in guesses:
+                name = "exact %s" % t + (" %s" % p if len(precisions) > 1 else "") + (
+                    " %s" % g if len(guesses) > 1 else "")
+                sets = ["projection.operator=exact", "projection.preconditioner=fast_diagonalization",
+                        "projection.tolerance=%s" % t, "projection.fd_precision=%s" % p]
+                out.append((name, sets + (["projection.initial_guess=%s" % g] if g else [])))
     return out
 
 
@@ -53,6 +57,8 @@ def main():
     ap.add_argument("--tolerances", default="1e-2,1e-3,1e-4,1e-8")
     ap.add_argument("--precisions", default="single",
                     help="fast diagonalization's precisions, comma-separated: single, double")
+    ap.add_argument("--initial-guesses", default="",
+                    help="CG initial guesses, comma-separated: previous, extrapolate (default: the scene's)")
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--out")
     ap.add_argument("--voigt", default=os.path.join(launch.build_dir(), "voigt"))
@@ -68,7 +74,8 @@ def main():
         if not m:
             sys.exit("tolerance_sweep: --restart-from needs a checkpoint_NNNNNNNNN.h5 file")
         first = int(m.group(1))
-    vs = variants([t for t in a.tolerances.split(",") if t], [p for p in a.precisions.split(",") if p])
+    vs = variants([t for t in a.tolerances.split(",") if t], [p for p in a.precisions.split(",") if p],
+                  [g for g in a.initial_guesses.split(",") if g] or [""])
     res = {name: [] for name, _ in vs}
     for rep in range(a.repeats):
         for name, sets in vs:

@@ -147,17 +147,6 @@ void projectionStressReductions(const Grid& g, Fields& f) {
   addStressDivergence(g, f.tau, f.coef, f.rhs, nodes);
   put("addStressDivergence", sumAbs(f.rhs, nodes));
   put("globalMaxAbs", globalMaxAbs(g, f.p, cells));
-  put("globalMeanAbs", globalMeanAbs(g, f.p, cells));
-  { // the CG initial guess from two pressure rates, and the rates' shift after a solve
-    Field f1("f1", g.ext[0], g.ext[1], g.ext[2]), f2("f2", g.ext[0], g.ext[1], g.ext[2]),
-        dp("dp", g.ext[0], g.ext[1], g.ext[2]);
-    Kokkos::deep_copy(f1, f.p);
-    Kokkos::deep_copy(f2, f.div);
-    extrapolateIncrement(f1, f2, dp, 0.01, true, cells);
-    put("extrapolateIncrement", sumAbs(dp, cells));
-    shiftPressureRates(f1, f2, dp, 0.02, cells);
-    put("shiftPressureRates", sumAbs(f1, cells) + sumAbs(f2, cells));
-  }
   put("localMaxAbs", localMaxAbs(f.u.c[1], nodeRange(g)));
   put("countNonFinite", double(countNonFinite(f.p, cells)));
   { // the fused count over several arrays: one planted Inf in a copy of p, none in u.x
@@ -202,44 +191,6 @@ void fastDiagonalization(const Grid& g, Fields& f) {
   Grid3 c("c", n0, n1, n2);
   fdFold<1>(b, c);
   put("fdFold", sumAbs3(c));
-  { // the same passes in float (the mixed-precision preconditioner): 1 when they agree with
-    // the double ones to float round-off (1e-5 of the largest value), on any backend
-    Grid3 a0("a0", n0, n1, n2), back("back", n0, n1, n2);
-    Kokkos::deep_copy(a0, Kokkos::subview(f.p, std::make_pair(cells.b[0], cells.e[0]),
-                                          std::make_pair(cells.b[1], cells.e[1]),
-                                          std::make_pair(cells.b[2], cells.e[2])));
-    Grid3Of<float> af("af", n0, n1, n2), bf("bf", n0, n1, n2);
-    DenseOf<float> W0("W0", n0, n0), W1("W1", n1, n1), W2("W2", n2, n2);
-    fdConvertDense<float>(V0, W0), fdConvertDense<float>(V1, W1), fdConvertDense<float>(V2, W2);
-    fdConvert<double, float>(a0, af);
-    fdTransform<0, false>(af, bf, W0, n0);
-    fdTransform<1, true>(bf, af, W1, n1);
-    fdTransform<2, false>(af, bf, W2, n2);
-    fdFold<1>(bf, af);
-    fdConvert<float, double>(af, back);
-    const int m = n0 * n1 * n2;
-    Kokkos::View<const double*, Kokkos::LayoutLeft, MemSpace> bl(back.data(), m);
-    Kokkos::View<float*, Kokkos::LayoutLeft, MemSpace> rf("rf", m);
-    RowVector rd("rd", m);
-    fdConvertRows<double, float>(bl, rf, m);
-    fdConvertRows<float, double>(Kokkos::View<const float*, Kokkos::LayoutLeft, MemSpace>(rf), rd, m);
-    double diff = 0, big = 0;
-    Kokkos::parallel_reduce(
-        "check_float_passes", Kokkos::RangePolicy<ExecSpace>(0, m),
-        KOKKOS_LAMBDA(int r, double& acc) {
-          const double d = Kokkos::Experimental::fabs(rd(r) - c.data()[r]);
-          acc = d > acc ? d : acc;
-        },
-        Kokkos::Max<double>(diff));
-    Kokkos::parallel_reduce(
-        "check_float_big", Kokkos::RangePolicy<ExecSpace>(0, m),
-        KOKKOS_LAMBDA(int r, double& acc) {
-          const double d = Kokkos::Experimental::fabs(c.data()[r]);
-          acc = d > acc ? d : acc;
-        },
-        Kokkos::Max<double>(big));
-    put("fdFloatPasses", diff <= 1e-5 * big ? 1.0 : 0.0);
-  }
   fdTransform<1, false>(c, a, V1, (n1 + 1) / 2); // block-diagonal use (V1 not block diagonal: a checksum)
   fdUnfold<2>(a, c);
   put("fdUnfold", sumAbs3(c));

@@ -3,9 +3,11 @@
 // initial and prescribed flows). Every call's result becomes a checksum (check.hpp).
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kernels/elastic.hpp"
+#include "kernels/fast_diag.hpp"
 #include "kernels/initial_flow.hpp"
 #include "kernels/momentum.hpp"
 #include "kernels/poisson_assembly.hpp"
@@ -234,12 +236,73 @@ void solverRowsAndShapes(const Grid& g, Fields& f) {
   put("evaluateShapeOps", sumAbs(f.psi1, cellRange(g, g.ng)));
 }
 
+// The projection's extras: the mean |div| diagnostic, the extrapolated CG initial guess and the
+// shift of the pressure rates, and the fast diagonalization's passes in float (the mixed-precision
+// preconditioner), checked against the same passes in double: 1 when they agree to float round-off
+// (1e-5 of the largest value) on any backend.
+void projectionExtras(const Grid& g, Fields& f) {
+  const Range3 cells = cellRange(g);
+  put("globalMeanAbs", globalMeanAbs(g, f.p, cells));
+  Field f1 = mk(g, "f1"), f2 = mk(g, "f2"), dp = mk(g, "dp");
+  Kokkos::deep_copy(f1, f.p);
+  Kokkos::deep_copy(f2, f.psi);
+  extrapolateIncrement(f1, f2, dp, 0.01, true, cells);
+  put("extrapolateIncrement", sumAbs(dp, cells));
+  shiftPressureRates(f1, f2, dp, 0.02, cells);
+  put("shiftPressureRates", sumAbs(f1, cells) + sumAbs(f2, cells));
+
+  const int n0 = g.ln[0], n1 = g.ln[1], n2 = g.ln[2], m = n0 * n1 * n2;
+  Grid3 a("a", n0, n1, n2), b("b", n0, n1, n2), c("c", n0, n1, n2), back("back", n0, n1, n2);
+  Kokkos::deep_copy(a, Kokkos::subview(f.p, std::make_pair(cells.b[0], cells.e[0]),
+                                       std::make_pair(cells.b[1], cells.e[1]), std::make_pair(cells.b[2], cells.e[2])));
+  Dense V[3];
+  DenseOf<float> W[3];
+  for (int d = 0; d < 3; ++d) {
+    const int n = g.ln[d];
+    V[d] = Dense("V", n, n);
+    auto h = Kokkos::create_mirror_view(V[d]);
+    for (int i = 0; i < n; ++i)
+      for (int q = 0; q < n; ++q) h(i, q) = std::cos(0.1 * (i + 1) * (q + 1)) / n;
+    Kokkos::deep_copy(V[d], h);
+    W[d] = DenseOf<float>("W", n, n);
+    fdConvertDense<float>(V[d], W[d]);
+  }
+  Grid3Of<float> af("af", n0, n1, n2), bf("bf", n0, n1, n2);
+  fdConvert<double, float>(a, af);
+  fdTransform<0, false>(a, b, V[0], n0), fdTransform<0, false>(af, bf, W[0], n0);
+  fdTransform<1, true>(b, a, V[1], n1), fdTransform<1, true>(bf, af, W[1], n1);
+  fdTransform<2, false>(a, b, V[2], n2), fdTransform<2, false>(af, bf, W[2], n2);
+  fdFold<1>(b, c), fdFold<1>(bf, af);
+  fdConvert<float, double>(af, back);
+  Kokkos::View<float*, Kokkos::LayoutLeft, MemSpace> rf("rf", m);
+  RowVector rd("rd", m);
+  fdConvertRows<double, float>(Kokkos::View<const double*, Kokkos::LayoutLeft, MemSpace>(back.data(), m), rf, m);
+  fdConvertRows<float, double>(Kokkos::View<const float*, Kokkos::LayoutLeft, MemSpace>(rf), rd, m);
+  double diff = 0, big = 0;
+  Kokkos::parallel_reduce(
+      "check_float_passes", Kokkos::RangePolicy<ExecSpace>(0, m),
+      KOKKOS_LAMBDA(int r, double& acc) {
+        const double d = Kokkos::Experimental::fabs(rd(r) - c.data()[r]);
+        acc = d > acc ? d : acc;
+      },
+      Kokkos::Max<double>(diff));
+  Kokkos::parallel_reduce(
+      "check_float_big", Kokkos::RangePolicy<ExecSpace>(0, m),
+      KOKKOS_LAMBDA(int r, double& acc) {
+        const double d = Kokkos::Experimental::fabs(c.data()[r]);
+        acc = d > acc ? d : acc;
+      },
+      Kokkos::Max<double>(big));
+  put("fdFloatPasses", diff <= 1e-5 * big ? 1.0 : 0.0);
+}
+
 void effects(const Grid& g, Fields& f) {
   solidBody(g, f);
   momentum(g, f);
   effectKernels(g, f);
   diagnostics(g, f);
   solverRowsAndShapes(g, f);
+  projectionExtras(g, f);
 }
 
 } // namespace check
