@@ -96,7 +96,7 @@ struct ProjectionCfg {
   // step), previous otherwise (multigrid on the same solve: 13.4 -> 22.9, its coarse levels
   // do not take the checkerboard part the extrapolation amplifies; perf/README.md, "The exact
   // projection at a tolerance").
-  std::string initialGuess = "extrapolate";
+  std::string initialGuess = "previous"; // scene/load.cpp applies the rule above
   bool initialGuessAuto = true;
 };
 

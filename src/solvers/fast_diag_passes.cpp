@@ -62,14 +62,18 @@ void FastDiagonalization::allocate(Passes<T>& P) const {
 
 template <class T>
 void FastDiagonalization::build(Passes<T>& P, const Grid3& inv) const {
-  for (int e = 0; e < 3; ++e) {
-    const int n = n_[e];
-    P.V[e] = DenseOf<T>("fd_V", n, n);
-    fdConvertDense<T>(V_[e], P.V[e]);
+  if constexpr (std::is_same<T, double>::value) { // the double passes use them as they are
+    for (int e = 0; e < 3; ++e) P.V[e] = V_[e];
+    P.inv = inv;
+  } else {
+    for (int e = 0; e < 3; ++e) {
+      P.V[e] = DenseOf<T>("fd_V", n_[e], n_[e]);
+      fdConvertDense<T>(V_[e], P.V[e]);
+    }
+    P.inv = Grid3Of<T>("fd_inverse_eigenvalues", inv.extent(0), inv.extent(1), inv.extent(2));
+    fdConvert<double, T>(inv, P.inv);
+    Kokkos::fence();
   }
-  P.inv = Grid3Of<T>("fd_inverse_eigenvalues", inv.extent(0), inv.extent(1), inv.extent(2));
-  fdConvert<double, T>(inv, P.inv);
-  Kokkos::fence();
   using CG = CGrid3Of<T>;
   using G = Grid3Of<T>;
   const int nb0 = nb_[0], nb1 = nb_[1], nb2 = nb_[2], n0 = n_[0], n1 = n_[1], n2 = n_[2];

@@ -3,6 +3,7 @@
 // list, the reductions that make a field a checksum, and the fields every part works on.
 #include <Kokkos_Core.hpp>
 
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/index_space.hpp"
+#include "kernels/fast_diag.hpp"
 #include "kernels/reinit.hpp"
 #include "kernels/stress.hpp"
 
@@ -59,6 +61,16 @@ struct Fields {
 };
 
 inline Field mk(const Grid& g, const char* name) { return Field(std::string(name), g.ext[0], g.ext[1], g.ext[2]); }
+
+// A dense n x n test matrix for the fast-diagonalization passes (not orthogonal: a checksum).
+inline Dense denseOf(int n) {
+  Dense V("V", n, n);
+  auto h = Kokkos::create_mirror_view(V);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < n; ++a) h(i, a) = std::cos(0.1 * (i + 1) * (a + 1)) / n;
+  Kokkos::deep_copy(V, h);
+  return V;
+}
 
 // The parts in kernels_effects.cpp (the effects' kernels), run after the others.
 void effects(const Grid& g, Fields& f);

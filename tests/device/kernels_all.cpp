@@ -168,15 +168,6 @@ double sumAbs3(const Grid3& a) {
   return s;
 }
 
-Dense denseOf(int n) {
-  Dense V("V", n, n);
-  auto h = Kokkos::create_mirror_view(V);
-  for (int i = 0; i < n; ++i)
-    for (int a = 0; a < n; ++a) h(i, a) = std::cos(0.1 * (i + 1) * (a + 1)) / n;
-  Kokkos::deep_copy(V, h);
-  return V;
-}
-
 void fastDiagonalization(const Grid& g, Fields& f) {
   const Range3 cells = cellRange(g);
   const int n0 = g.ln[0], n1 = g.ln[1], n2 = g.ln[2];

@@ -258,13 +258,8 @@ void projectionExtras(const Grid& g, Fields& f) {
   Dense V[3];
   DenseOf<float> W[3];
   for (int d = 0; d < 3; ++d) {
-    const int n = g.ln[d];
-    V[d] = Dense("V", n, n);
-    auto h = Kokkos::create_mirror_view(V[d]);
-    for (int i = 0; i < n; ++i)
-      for (int q = 0; q < n; ++q) h(i, q) = std::cos(0.1 * (i + 1) * (q + 1)) / n;
-    Kokkos::deep_copy(V[d], h);
-    W[d] = DenseOf<float>("W", n, n);
+    V[d] = denseOf(g.ln[d]);
+    W[d] = DenseOf<float>("W", g.ln[d], g.ln[d]);
     fdConvertDense<float>(V[d], W[d]);
   }
   Grid3Of<float> af("af", n0, n1, n2), bf("bf", n0, n1, n2);
