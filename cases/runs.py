@@ -40,14 +40,29 @@ def grid_of(scene, sets):
     return "x".join(re.findall(r"\d+", m.group(1)))
 
 
-def tagged_model(model, sets):
+def projection_of(scene, sets):
+    """The run's projection operator: the last projection.operator of the --set values, else the
+    scene's (its `projection:` section), else Voigt's default, exact."""
+    for s in reversed(sets):
+        if s.startswith("projection.operator="):
+            return s.split("=", 1)[1].strip()
+    with open(scene) as f:
+        sec = re.search(r"^projection:[^\n]*\n((?:[ \t]+.*\n|[ \t]*\n)*)", f.read(), re.M)
+    m = re.search(r"^\s+operator:\s*(\w+)", sec.group(1), re.M) if sec else None
+    return m.group(1) if m else "exact"
+
+
+def tagged_model(model, sets, scene=None):
     """The fluid-side model with the level set's volume correction: "integrate+global" (the
-    default since 2026-12-03) or "integrate+none". Rows from before hold the bare name (none)."""
+    default since 2026-12-03) or "integrate+none" (rows from before hold the bare name), and
+    "+exact" when the run projects with the exact operator (issue 19; every paper-scene run
+    before 2026-12-05 used the approximate one, and their ids carry no projection tag)."""
     corr = "global"
     for s in sets:
         if s.startswith("level_set.volume_correction="):
             corr = s.split("=", 1)[1].strip()
-    return "%s+%s" % (model, corr)
+    tag = "+exact" if scene and projection_of(scene, sets) == "exact" else ""
+    return "%s+%s%s" % (model, corr, tag)
 
 
 def run_id(modulus, model, grid):
@@ -205,7 +220,7 @@ def main(argv):
     cmd, args = argv[1], argv[2:]
     if cmd == "id":
         grid = grid_of(args[0], args[3:])
-        model = tagged_model(args[2], args[3:])
+        model = tagged_model(args[2], args[3:], args[0])
         print(run_id(args[1], model, grid), grid, model)
     elif cmd == "seconds":
         try:

@@ -213,13 +213,18 @@ study_runs() {
 # The figure inputs of one model ($1): fig_runs=(--run DIR LABEL ...) in moduli order, LABEL
 # from the printf format $2 and the modulus; fig_dir: $out, or $out/figures_<model> when the
 # study ran more than one model.
+# A run whose folder is not on this machine is drawn from its committed digest
+# (cases/<name>/digests/<id>.npz) when the case keeps them (cases/porous_bed/run_data.py).
 study_figure_runs() {
-  local mu id
+  local mu id src digests
+  digests="$root/cases/$(basename "$(dirname "$study_scene")")/digests"
   fig_runs=()
   for mu in $moduli; do
     for id in "${selected[@]}"; do
+      src="$out/$id"
+      [ -d "$src" ] || [ ! -f "$digests/$id.npz" ] || src="$digests/$id.npz"
       # shellcheck disable=SC2059
-      if [[ "$id" == "mu${mu}_$1+"* ]]; then fig_runs+=(--run "$out/$id" "$(printf "$2" "$mu")"); fi
+      if [[ "$id" == "mu${mu}_$1+"* ]]; then fig_runs+=(--run "$src" "$(printf "$2" "$mu")"); fi
     done
   done
   fig_dir="$out"

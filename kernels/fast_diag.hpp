@@ -61,7 +61,21 @@ inline void fdTransform(const CGrid3In<T>& in, const Grid3Of<T>& out, const Dens
 #pragma GCC ivdep
             for (int i = 0; i < n0; ++i) o[i] = 0;
             const int qb = a < nb ? 0 : nb, qe = a < nb ? nb : m;
-            for (int q = qb; q < qe; ++q) {
+            // Four input rows a pass: o is loaded and stored once per four (the axpy form
+            // is bound by o's traffic through L1; perf/README.md, "The exact operator
+            // without its matrix").
+            int q = qb;
+            for (; q + 3 < qe; q += 4) {
+              const T w0 = Back ? V(a, q) : V(q, a), w1 = Back ? V(a, q + 1) : V(q + 1, a);
+              const T w2 = Back ? V(a, q + 2) : V(q + 2, a), w3 = Back ? V(a, q + 3) : V(q + 3, a);
+              const T* x0 = Axis == 1 ? &in(0, q, s) : &in(0, s, q);
+              const T* x1 = Axis == 1 ? &in(0, q + 1, s) : &in(0, s, q + 1);
+              const T* x2 = Axis == 1 ? &in(0, q + 2, s) : &in(0, s, q + 2);
+              const T* x3 = Axis == 1 ? &in(0, q + 3, s) : &in(0, s, q + 3);
+#pragma GCC ivdep
+              for (int i = 0; i < n0; ++i) o[i] += (w0 * x0[i] + w1 * x1[i]) + (w2 * x2[i] + w3 * x3[i]);
+            }
+            for (; q < qe; ++q) {
               const T w = Back ? V(a, q) : V(q, a);
               const T* x = Axis == 1 ? &in(0, q, s) : &in(0, s, q);
 #pragma GCC ivdep
@@ -88,12 +102,22 @@ inline void fdTransform(const CGrid3In<T>& in, const Grid3Of<T>& out, const Dens
           const T* x = &in(0, j, k);
 #pragma GCC ivdep
           for (int r = 0; r < m; ++r) o[r] = 0;
-          for (int t = 0; t < m; ++t) {
-            const int rb = t < nb ? 0 : nb, re = t < nb ? nb : m;
-            const T w = x[t];
-            const T* col = &W(0, t);
+          // Four columns a pass within each block of columns [0, nb), [nb, m) (as the slab form).
+          for (int blk = 0; blk < 2; ++blk) {
+            const int tb = blk ? nb : 0, te = blk ? m : nb, rb = tb, re = te;
+            int t = tb;
+            for (; t + 3 < te; t += 4) {
+              const T w0 = x[t], w1 = x[t + 1], w2 = x[t + 2], w3 = x[t + 3];
+              const T *c0 = &W(0, t), *c1 = &W(0, t + 1), *c2 = &W(0, t + 2), *c3 = &W(0, t + 3);
 #pragma GCC ivdep
-            for (int r = rb; r < re; ++r) o[r] += col[r] * w;
+              for (int r = rb; r < re; ++r) o[r] += (c0[r] * w0 + c1[r] * w1) + (c2[r] * w2 + c3[r] * w3);
+            }
+            for (; t < te; ++t) {
+              const T w = x[t];
+              const T* col = &W(0, t);
+#pragma GCC ivdep
+              for (int r = rb; r < re; ++r) o[r] += col[r] * w;
+            }
           }
         });
     return;

@@ -15,6 +15,51 @@ constexpr int kStencil = 27; // slot table width: offset o = (di+1) + 3 (dj+1) +
 constexpr int kCentre = 13;
 using SlotView = Kokkos::View<int**, Kokkos::LayoutRight, MemSpace>;
 
+// The 24 node coefficients around cell l, read once: cv[3 corner + d]; returns the row's zero
+// pattern (bit 3 corner + d set when coef_d(corner) != 0).
+KOKKOS_INLINE_FUNCTION int cornerCoefficients(const VecField& coef, const int l[3], double cv[24]) {
+  int mask = 0;
+  VOIGT_UNROLL
+  for (int cn = 0; cn < 8; ++cn)
+    VOIGT_UNROLL
+    for (int d = 0; d < 3; ++d) {
+      const double v = coef.c[d](l[0] + (cn & 1), l[1] + ((cn >> 1) & 1), l[2] + ((cn >> 2) & 1));
+      cv[3 * cn + d] = v;
+      mask |= (v != 0) << (3 * cn + d);
+    }
+  return mask;
+}
+
+// What the exact operator needs of its rows when it is applied without a matrix
+// (kernels/poisson_apply.hpp): the zero pattern and `changed` as assemblePoisson, identity
+// rows (no free corner coefficient: the row would be empty), and a bound on ||A||_inf:
+// row r's absolute sum is at most 8 A_rr (each corner term s_d(n) enters at most 8 entries,
+// A_rr = sum over corners and d of s_d(n)), and at least A_rr. Returns max_r 8 A_rr (1 on
+// identity rows), the round-off scale of PoissonSolver::solve and of the null-space test.
+inline double poissonRowPattern(const RowFlags& ident, const RowFlags& pattern, const GridGeom& G, const CellRows& rw,
+                                const VecField& coef, int nrows, const Kokkos::View<int, MemSpace>& changed) {
+  double amax = 0;
+  Kokkos::parallel_reduce(
+      "poisson_row_pattern", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r, double& rowMax) {
+        int l[3];
+        rw.cell(r, l[0], l[1], l[2]);
+        double cv[24];
+        const int mask = cornerCoefficients(coef, l, cv);
+        if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
+        pattern(r) = mask;
+        double diag = 0;
+        for (int cn = 0; cn < 8; ++cn) {
+          const double wi = G.nodeWeightInv(l[0] + (cn & 1), l[1] + ((cn >> 1) & 1), l[2] + ((cn >> 2) & 1));
+          for (int d = 0; d < 3; ++d) diag += cv[3 * cn + d] * wi / (16 * G.h[d] * G.h[d]);
+        }
+        ident(r) = mask == 0 ? 1 : 0;
+        const double bound = mask == 0 ? 1.0 : 8 * diag;
+        rowMax = rowMax > bound ? rowMax : bound;
+      },
+      Kokkos::Max<double>(amax));
+  return amax;
+}
+
 template <class Values, class RowMap>
 inline double assemblePoisson(const Values& vals, const RowMap& rowPtr, const SlotView& slot, const RowFlags& ident,
                        const RowFlags& pattern, const GridGeom& G, const CellRows& rw, bool exact,
@@ -25,17 +70,8 @@ inline double assemblePoisson(const Values& vals, const RowMap& rowPtr, const Sl
         "poisson_fill", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r, double& rowMax) {
           int l[3];
           rw.cell(r, l[0], l[1], l[2]);
-          // The 24 node coefficients around the cell, read once: cv[3 corner + d].
           double cv[24];
-          int mask = 0; // bit q = 3 corner + d: coef_d(corner) != 0
-          VOIGT_UNROLL
-          for (int cn = 0; cn < 8; ++cn)
-            VOIGT_UNROLL
-            for (int d = 0; d < 3; ++d) {
-              const double v = coef.c[d](l[0] + (cn & 1), l[1] + ((cn >> 1) & 1), l[2] + ((cn >> 2) & 1));
-              cv[3 * cn + d] = v;
-              mask |= (v != 0) << (3 * cn + d);
-            }
+          const int mask = cornerCoefficients(coef, l, cv);
           if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
           pattern(r) = mask;
           for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) vals(p) = 0;

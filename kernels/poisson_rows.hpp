@@ -37,7 +37,8 @@ inline void fieldToRows(const Field& f, const RowVector& v, CellRows rw, Range3 
 }
 
 // f = v(row) on the owned cells.
-inline void rowsToField(const RowVector& v, const Field& f, CellRows rw, Range3 cells) {
+template <class V> // RowVector, or its const form
+inline void rowsToField(const V& v, const Field& f, CellRows rw, Range3 cells) {
   for_each3("poisson_vec_to_field", cells, KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = v(rw.row(i, j, k)); });
   Kokkos::fence();
 }

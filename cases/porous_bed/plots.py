@@ -4,7 +4,12 @@ plus the Ergun prediction (paper Eq. 23) for the packing's measured voidage (pac
 Python 3 + numpy + matplotlib + h5py (Debian python3-*).
 
     cases/porous_bed/plots.py -o DIR --run output/pb/mu_100 100 --run output/pb/mu_1000 1000 [--title T]
-        [--time T] [--csv results.csv] [--rigid RIGID_RUN]
+        [--time T] [--csv results.csv] [--rigid RIGID_RUN] [--digests DIGEST_DIR]
+
+A --run is a run's output folder or its digest (run_data.py: DIR/<run id>.npz, the numbers these
+figures need at the run's end, committed in cases/porous_bed/digests/ so that a run's figures
+outlive the machine it ran on). With --digests DIR, one digest per finished run folder is
+written there.
 
 Writes DIR/pressure_midline.png (Fig. 4), gradient_midline.png (Fig. 5), gradient_vs_modulus.png
 (Fig. 6: mean -dp/dy over y = 0.10-0.25 m, linear fit, slope, intercept, R^2), pressure_slice.png
@@ -28,11 +33,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import fields, series  # noqa: E402
-from voigt_post.xdmf import frames  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))  # run_data
+from run_data import RunDir, Y0, Y1, load, write_digest  # noqa: E402
+from voigt_post import series  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-Y0, Y1 = 0.10, 0.25            # the paper's bed interior
 RHO, MU, U, D, G = 1.0, 1e-5, 0.1, 0.025, 9.81
 
 
@@ -41,43 +46,11 @@ def ergun(e):
     return (1 - e) / e ** 3 * RHO * U ** 2 / D * (150 * (1 - e) * MU / (D * U * RHO) + 1.75)
 
 
-def midline(d, at=None):
-    if at is not None:
-        t, path, _, _, sp = frames(d, at)[-1]
-        p = fields.read(path, "pressure")          # (z, y, x), cell centres
-        nz, ny, nx = p.shape
-        col = p[nz // 2 - 1:nz // 2 + 1, :, nx // 2 - 1:nx // 2 + 1].mean(axis=(0, 2))
-        return t, (np.arange(ny) + 0.5) * sp[1], col
-    rows = series.probe(d, "midline")
-    t = max(rows)
-    y, p = np.array(sorted((r["y"], r["pressure"]) for r in rows[t])).T
-    return t, y, p
-
-
-slice_mid = fields.mid_z             # (y, x) at the middle z
-
-
-def section_gradient(d, at=None):
-    """(t, mean -dp/dy over y = 0.10-0.25 m) of the pressure averaged over each cross-section
-    (all cells at that y) in the last field output at or before `at`: the midline's measure
-    without its steps where the line crosses a sphere that holds elastic stress."""
-    t, path, _, _, sp = frames(d, at)[-1]
-    pbar = fields.read(path, "pressure").mean(axis=(0, 2))
-    y = (np.arange(pbar.size) + 0.5) * sp[1]
-    sel = (y >= Y0) & (y <= Y1)
-    return t, float(np.mean(-np.gradient(pbar, y)[sel]))
-
-
-def timeseries(d):
-    cols = series.timeseries(d)
-    return np.array(cols["t"]), np.array(cols["solid_cy"])
-
-
-def results_row(d, summ, t, mean, section, rise):
-    """Issue 22's porous-bed table: one finished run (its directory and summary.json)."""
+def results_row(run, summ, t, mean, section, rise):
+    """Issue 22's porous-bed table: one finished run (a run_data source and its summary.json)."""
     ls = summ.get("level_set", {})
     sharp0 = ls.get("sharp_volume_initial")
-    return dict(series.run_row(d, summ), **{
+    return dict(series.run_row(run.run_id, summ), **{
         "midline_t": "%.4f" % t,
         "mean_gradient": "%.1f" % mean,
         "section_gradient": "%.1f" % section,
@@ -97,8 +70,9 @@ def main():
     ap.add_argument("--csv", help="merge one row per finished run into this CSV (results.csv)")
     ap.add_argument("--rigid", metavar="DIR", help="a run of rigid_bed.py's scene (the very stiff limit): its mean "
                     "gradient is drawn in Fig. 6 and printed beside Ergun's")
+    ap.add_argument("--digests", metavar="DIR", help="write DIR/<run id>.npz for every finished run folder")
     a = ap.parse_args()
-    runs = sorted(((float(m), d) for d, m in a.run))
+    runs = sorted(((float(m), load(d, a.time)) for d, m in a.run), key=lambda r: r[0])
     os.makedirs(a.outdir, exist_ok=True)
     sfx = ("\n" + a.title) if a.title else ""
     pk = json.load(open(os.path.join(HERE, "packing.json")))["voidage_written"]
@@ -106,7 +80,7 @@ def main():
     f5, ax5 = plt.subplots(figsize=(6, 4.5))
     mus, grads, secs, rows, results = [], [], [], [], []
     for n, (mu, d) in enumerate(runs):
-        t, y, p = midline(d, a.time)
+        t, y, p = d.midline()
         gr = -np.gradient(p, y)
         sel = (y >= Y0) & (y <= Y1)
         mean = float(np.mean(gr[sel]))
@@ -114,16 +88,19 @@ def main():
         ax4.plot(y, p, c, label="mu_S = %g Pa (t = %.3g s)" % (mu, t))
         ax5.plot(y, gr, c, lw=0.8, label="mu_S = %g Pa" % mu)
         ax5.plot([Y0, Y1], [mean, mean], c + "--")
-        tt, cy = timeseries(d)
+        tt, cy = d.centroid()
         mus.append(mu)
         grads.append(mean)
         k = int(np.argmin(np.abs(tt - t)))      # centroid rise at the midline's time
-        ts, sec = section_gradient(d, a.time)
+        ts, sec = d.section_gradient()
         secs.append(sec)
         rows.append((mu, t, mean, mean - RHO * G, ts, sec, 1000 * (cy[k] - cy[0])))
-        summ = series.summary(d, {})
+        summ = d.summary()
         if a.csv and a.time is None and series.finished(summ):
             results.append(results_row(d, summ, t, mean, sec, rows[-1][-1]))
+        if a.digests and a.time is None and isinstance(d, RunDir) and series.finished(summ):
+            os.makedirs(a.digests, exist_ok=True)
+            write_digest(d, os.path.join(a.digests, d.run_id + ".npz"))
     for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),
                              (ax5, f5, "-dp/dy (Pa/m); dashed: mean over 0.10-0.25 m", "gradient_midline.png")):
         ax.set_xlabel("y (m), midline x = z = 5.5 cm")
@@ -156,9 +133,10 @@ def main():
     ax6.axhline(RHO * G, ls="--", color="0.5", label="gas hydrostatic rho g = 9.81 Pa/m")
     rigid = None
     if a.rigid:  # same measure (midline, y = 0.10-0.25 m) on the bed of fixed spheres
-        t_r, y_r, p_r = midline(a.rigid, a.time)
+        rr = load(a.rigid, a.time)
+        t_r, y_r, p_r = rr.midline()
         gr_r = -np.gradient(p_r, y_r)
-        rigid = (t_r, float(np.mean(gr_r[(y_r >= Y0) & (y_r <= Y1)]))) + section_gradient(a.rigid, a.time)
+        rigid = (t_r, float(np.mean(gr_r[(y_r >= Y0) & (y_r <= Y1)]))) + rr.section_gradient()
         ax6.axhline(rigid[1], ls="-.", color="C4", label="rigid bed (fixed spheres), t = %.3g s: %.1f Pa/m" % rigid[:2])
         ax6.axhline(rigid[3], ls=":", color="C4", label="rigid bed, section-averaged: %.1f Pa/m" % rigid[3])
     ax6.set_xlabel("mu_S (Pa)")
@@ -173,23 +151,22 @@ def main():
     f7, ax7 = plt.subplots(1, len(ends), figsize=(3.8 * len(ends) + 1, 6), squeeze=False)
     f8, ax8 = plt.subplots(1, len(ends) + 1, figsize=(3.2 * len(ends) + 4, 6), squeeze=False)
     for n, (mu, d) in enumerate(ends):
-        fr = frames(d, a.time)
-        t, path, _, _, sp = fr[-1]
-        p, psi = slice_mid(path, "pressure"), slice_mid(path, "psi")
+        sp, fr = d.slices()  # first, middle, last output: (t, pressure, psi)
+        t, p, psi = fr[-1]
         ext = [0, sp[0] * p.shape[1], 0, sp[1] * p.shape[0]]
         im = ax7[0][n].imshow(p, origin="lower", extent=ext, cmap="jet")
         ax7[0][n].contour(psi, [0], colors="k", linewidths=0.5, origin="lower", extent=ext)
         ax7[0][n].set_title("mu_S = %g Pa, t = %.3g s" % (mu, t), fontsize=9)
         f7.colorbar(im, ax=ax7[0][n], label="pressure (Pa)", shrink=0.7)
-        for q, st in zip((fr[0], fr[len(fr) // 2], fr[-1]), (":", "--", "-")):
-            ax8[0][n].contour(slice_mid(q[1], "psi"), [0], colors="k", linestyles=st, linewidths=0.7,
+        for q, st in zip(fr, (":", "--", "-")):
+            ax8[0][n].contour(q[2], [0], colors="k", linestyles=st, linewidths=0.7,
                               origin="lower", extent=ext)
             ax8[0][n].plot([], [], "k" + st, label="t = %.3g s" % q[0])
         ax8[0][n].set_title("psi = 0, mid-plane z, mu_S = %g Pa" % mu, fontsize=9)
         ax8[0][n].set_aspect("equal")
         ax8[0][n].legend(fontsize=7, loc="lower right")
     for mu, d in runs:
-        tt, cy = timeseries(d)
+        tt, cy = d.centroid()
         ax8[0][-1].plot(tt, 1000 * (cy - cy[0]), label="mu_S = %g Pa" % mu)
     ax8[0][-1].set_xlabel("t (s)")
     ax8[0][-1].set_ylabel("rise of the bed's centroid (mm)")

@@ -34,7 +34,8 @@ VARIANTS = {
     # name: (description, how the scene is obtained)
     "scene": "perf/scenes/dam_break.yaml as written: approximate (7-point) operator, multigrid, tolerance 1e-6",
     "defaults": "the same scene without its projection section: Voigt's defaults, exact (27-point) "
-                "operator, fast diagonalization (the exact operator's default), tolerance 1e-8",
+                "operator without its matrix, fast diagonalization, tolerance 1e-3 (the exact operator's "
+                "default with two densities), extrapolated initial guess",
 }
 EXACT = "exact-"  # exact-TOL: the scene with the exact operator at tolerance TOL, e.g. exact-1e-3
 

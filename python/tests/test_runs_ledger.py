@@ -96,6 +96,20 @@ class Ledger(unittest.TestCase):
         self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))[("state")], "failed")
         self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "")
 
+    def test_run_id_says_which_projection(self):
+        scene = os.path.join(self.dir.name, "s.yaml")
+        for body, sets, tag in [("projection:\n  operator: approximate\n  tolerance: 1e-6\n", [], ""),
+                                ("projection:\n  # note\n\n  operator: exact\n", [], "+exact"),
+                                ("time: {end: 1}\n", [], "+exact"),  # Voigt's default operator
+                                ("projection:\n  tolerance: 1e-3\nother:\n  operator: approximate\n", [], "+exact"),
+                                ("projection:\n  operator: approximate\n", ["projection.operator=exact"], "+exact"),
+                                ("projection:\n  operator: exact\n", ["projection.operator=approximate"], "")]:
+            with open(scene, "w") as f:
+                f.write("domain:\n  cells: [4, 8, 4]\n" + body)
+            self.assertEqual(runs.tagged_model("extend", sets, scene), "extend+global" + tag, body)
+        self.assertEqual(runs.run_id("100", runs.tagged_model("extend", [], scene), "4x8x4"), "mu100_extend+global+exact_4x8x4")
+        self.assertEqual(runs.tagged_model("extend", ["level_set.volume_correction=none"]), "extend+none")
+
     def test_durations(self):
         for text, s in [("3h", 10800), ("170m", 10200), ("3600s", 3600), ("02:50:00", 10200)]:
             self.assertAlmostEqual(runs.seconds(text), s)

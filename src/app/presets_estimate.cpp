@@ -57,7 +57,12 @@ std::string knobOrigin(const Scene& s, const PresetKnob& k) {
     }
   if (origin.empty()) origin = treeValue(s, k).empty() ? "default" : "scene or --set";
   if (origin == "default" && path == "projection.preconditioner" && s.projection.preconditionerAuto)
-    origin = "default by size and phases (multigrid from 32^3 cells or two densities, else sgs)";
+    origin = s.projection.op == ProjectionCfg::Op::Exact
+                 ? "default with the exact operator"
+                 : "default by size and phases (multigrid from 32^3 cells or two densities, else sgs)";
+  if (origin == "default" && path == "projection.tolerance" && s.projection.toleranceAuto &&
+      s.projection.tolerance == ProjectionCfg::kTwoPhaseExactTolerance)
+    origin = "default: exact operator, two densities";
   if (path == "time.cfl" && s.time.dt > 0) origin += "; unused: fixed time.dt";
   if (section == "projection" && !hasEffect(s, "navier_stokes")) origin += "; unused: no navier_stokes";
   return origin;

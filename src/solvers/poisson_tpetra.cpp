@@ -18,6 +18,7 @@
 #include "kernels/poisson_assembly.hpp"
 #include "kernels/poisson_rows.hpp"
 #include "kernels/projection_ops.hpp"
+#include "solvers/multigrid_params.hpp"
 #include "solvers/null_space.hpp"
 #include "solvers/operators.hpp"
 #include "solvers/poisson.hpp"
@@ -49,9 +50,17 @@ class TpetraPoisson final : public PoissonSolver {
     tcomm_ = Teuchos::rcp(new Teuchos::MpiComm<int>(Teuchos::opaqueWrapper(dup, MPI_Comm_free)));
     exact_ = cfg.op == PoissonSettings::Op::Exact;
     nrows_ = (int)g.cellsOwned();
-    buildGraph(g);
-    A_ = Teuchos::rcp(new Matrix(graph_));
-    A_->fillComplete();
+    // The CSR matrix: for the approximate operator, SGS, Jacobi and multigrid (which read its
+    // entries), and projection.matrix_free: false. CG with fast diagonalization or none needs
+    // only products, so the exact operator then has no matrix (~330 bytes a cell less).
+    const bool matrixFree = exact_ && cfg.matrixFree;
+    csr_ = !matrixFree || (cfg.preconditioner != "fast_diagonalization" && cfg.preconditioner != "none");
+    buildMap(g);
+    if (csr_) {
+      buildGraph();
+      A_ = Teuchos::rcp(new Matrix(graph_));
+      A_->fillComplete();
+    }
     b_ = Teuchos::rcp(new Vector(map_));
     x_ = Teuchos::rcp(new Vector(map_));
     x0_ = Teuchos::rcp(new Vector(map_));
@@ -66,17 +75,20 @@ class TpetraPoisson final : public PoissonSolver {
         throw std::invalid_argument("projection.preconditioner: fast_diagonalization needs operator: exact");
       fd_ = std::make_unique<FastDiagonalization>(g, comm_, cfg.fdSingle);
     }
+    if (matrixFree) mf_ = Teuchos::rcp(new MatrixFreeOperator(g, map_, ident_));
+    op_ = mf_.is_null() ? Teuchos::RCP<const Operator>(A_) : Teuchos::RCP<const Operator>(mf_);
     buildSolver();
   }
 
   void setCoefficients(const VecField& coef) override {
     const double t0 = MPI_Wtime();
-    A_->resumeFill();
+    if (csr_) A_->resumeFill();
     const bool patternChanged = fillValues(coef);
-    A_->fillComplete();
+    if (csr_) A_->fillComplete();
+    if (!mf_.is_null()) mf_->setCoefficients(coef);
     auto applyA = [this](const RowVector& in, const RowVector& out) {
       Kokkos::deep_copy(devView(*x_), in);
-      A_->apply(*x_, *t_);
+      op_->apply(*x_, *t_);
       Kokkos::deep_copy(out, devView(*t_));
     };
     if (patternChanged) ns_->rebuild(ident_, applyA, anorm_); // null(A) depends on the pattern only
@@ -88,37 +100,7 @@ class TpetraPoisson final : public PoissonSolver {
       // every multigrid_refresh updates.
       const bool refresh = (cfg_.multigridRefresh > 0 && sinceBuild_ + 1 >= cfg_.multigridRefresh) || rebuildDue_;
       if (muelu_.is_null() || (cfg_.multigridReuse != "none" && (patternChanged || refresh))) {
-        Teuchos::ParameterList p;
-        p.set("verbosity", "none");
-        p.set("coarse: type", "RELAXATION"); // KLU2 fails on the singular operator
-        // On a threaded node (OpenMP, CUDA) MueLu aggregates with its Kokkos algorithms, whose
-        // phases race unless told otherwise: the hierarchy, and so every iterate, would differ
-        // from run to run (a restart not bit-identical). The Serial node ignores it.
-        p.set("aggregation: deterministic", true);
-        // Not enough: MueLu 13.2's Kokkos tentative prolongator (TentativePFactory_kokkos_def.hpp,
-        // createAgg2RowMap) lists each aggregate's rows with atomic_fetch_add, so their order, and
-        // the round-off of each aggregate's QR, follows the thread schedule. On host backends use
-        // the classic factories, as MueLu does by itself on the Serial node (no change there).
-        if (!kOnDevice) p.set("use kokkos refactor", false);
-        auto& cp = p.sublist("coarse: params");
-        cp.set("relaxation: type", "Symmetric Gauss-Seidel");
-        cp.set("relaxation: sweeps", cfg_.coarseSweeps);
-        cp.set("relaxation: damping factor", cfg_.damping);
-        if (cfg_.multigridReuse != "none") p.set("reuse: type", cfg_.multigridReuse);
-        if (exact_) {
-          // The 27-point D B G has low-energy modulated checkerboards (its null space holds
-          // the checkerboards, null_space.hpp): aggregates that also carry (-1)^(i+j+k) can
-          // represent them on the coarse levels. Dam break at density ratio 1000, 64^3,
-          // tolerance 1e-8: 1000 (the cap) -> 160-200 iterations; 32^3: 340-430 -> 95-115.
-          // A smaller coarsest level (MueLu's default is 2000 rows, solved here by one SGS
-          // sweep) takes another 20 % off at 64^3 (perf/README.md, "Exact projection").
-          p.sublist("user data").set("Nullspace", nearNull_);
-          p.set("coarse: max size", 200);
-        }
-        if (cfg_.multigridSmoother == "chebyshev") {
-          p.set("smoother: type", "CHEBYSHEV");
-          p.sublist("smoother: params").set("chebyshev: degree", cfg_.chebyshevDegree);
-        }
+        Teuchos::ParameterList p = multigridParameters(cfg_, exact_, nearNull_);
         muelu_ = MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Operator>(A_), p);
         problem_->setLeftPrec(Teuchos::rcp(new ProjectedPrec(muelu_, ns_.get())));
         sinceBuild_ = 0;
@@ -200,11 +182,12 @@ class TpetraPoisson final : public PoissonSolver {
 
   void apply(const Field& x, const Field& y) override {
     fieldToVec(x, *x_, rows_, cells_, RowFlags());
-    A_->apply(*x_, *t_);
+    op_->apply(*x_, *t_);
     vecToField(*t_, y, rows_, cells_);
   }
 
-  long long globalNonzeros() const override { return (long long)A_->getGlobalNumEntries(); }
+  // 0 without a matrix (matrix-free exact operator with fast diagonalization or none).
+  long long globalNonzeros() const override { return A_.is_null() ? 0 : (long long)A_->getGlobalNumEntries(); }
   int nullModeCount() const override { return ns_->dimension(); }
 
  private:
@@ -225,9 +208,8 @@ class TpetraPoisson final : public PoissonSolver {
     return exact_ || a <= 1;
   }
 
-  // Row Map, graph (built once) and the slot table: slot(r, o) = index into the
-  // local values array of row r's entry for offset o (-1 when absent).
-  void buildGraph(const Grid& g) {
+  // Row Map: one row per owned cell, the global cell index as its id.
+  void buildMap(const Grid& g) {
     std::vector<GO> gids(nrows_);
     for (int r = 0; r < nrows_; ++r) {
       int i, j, k;
@@ -237,6 +219,11 @@ class TpetraPoisson final : public PoissonSolver {
     }
     map_ = Teuchos::rcp(new Map((Tpetra::global_size_t)g.cellsGlobal(), Teuchos::ArrayView<const GO>(gids),
                                 0, tcomm_));
+  }
+
+  // Graph (built once) and the slot table: slot(r, o) = index into the local values array
+  // of row r's entry for offset o (-1 when absent).
+  void buildGraph() {
     graph_ = Teuchos::rcp(new Graph(map_, exact_ ? 27 : 7));
     std::vector<GO> cols;
     for (int r = 0; r < nrows_; ++r) {
@@ -248,7 +235,7 @@ class TpetraPoisson final : public PoissonSolver {
         if (inStencil(o) && column(gc, o) >= 0) cols.push_back(column(gc, o));
       std::sort(cols.begin(), cols.end()); // periodic n < 3: offsets alias
       cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
-      graph_->insertGlobalIndices(gids[r], Teuchos::ArrayView<const GO>(cols));
+      graph_->insertGlobalIndices(map_->getGlobalElement(r), Teuchos::ArrayView<const GO>(cols));
     }
     graph_->fillComplete();
     slot_ = SlotView("poisson_slots", nrows_, kStencil);
@@ -273,11 +260,18 @@ class TpetraPoisson final : public PoissonSolver {
 
   // Values from coef (assemblePoisson); sets anorm_ = ||A||_inf and returns whether the
   // zero pattern changed, globally.
+  // Without a matrix (csr_ false) only the pattern, the identity rows and a bound on ||A||
+  // within 8x (poissonRowPattern).
   bool fillValues(const VecField& coef) {
-    auto lcl = A_->getLocalMatrixDevice();
     Kokkos::View<int, MemSpace> changed("poisson_pattern_changed");
-    const double amax = assemblePoisson(lcl.values, lcl.graph.row_map, slot_, ident_, pattern_, geom_, rows_,
-                                        exact_, coef, nrows_, changed);
+    double amax;
+    if (csr_) {
+      auto lcl = A_->getLocalMatrixDevice();
+      amax = assemblePoisson(lcl.values, lcl.graph.row_map, slot_, ident_, pattern_, geom_, rows_, exact_, coef,
+                             nrows_, changed);
+    } else {
+      amax = poissonRowPattern(ident_, pattern_, geom_, rows_, coef, nrows_, changed);
+    }
     Kokkos::fence();
     MPI_Allreduce(&amax, &anorm_, 1, MPI_DOUBLE, MPI_MAX, comm_);
     int any = 0;
@@ -302,7 +296,7 @@ class TpetraPoisson final : public PoissonSolver {
   void zeroIdentityRows(Vector& v) const { voigt::zeroIdentityRows(devView(v), ident_, nrows_); }
 
   double residual() { // ||b - A x||, t = b - A x
-    A_->apply(*x_, *t_);
+    op_->apply(*x_, *t_);
     t_->update(1.0, *b_, -1.0);
     return t_->norm2();
   }
@@ -317,7 +311,7 @@ class TpetraPoisson final : public PoissonSolver {
     bp->set("Output Frequency", -1);
     Belos::SolverFactory<Scalar, MV, Operator> factory;
     solver_ = factory.create("PSEUDOBLOCK CG", bp);
-    counted_ = Teuchos::rcp(new CountedOperator(A_));
+    counted_ = Teuchos::rcp(new CountedOperator(op_));
     problem_ = Teuchos::rcp(new Problem(counted_, x_, b_));
     const std::string& pc = cfg_.preconditioner;
     if (pc == "sgs" || pc == "jacobi") {
@@ -355,12 +349,15 @@ class TpetraPoisson final : public PoissonSolver {
   Range3 cells_;
   PoissonSettings cfg_;
   bool exact_ = true, ready_ = false;
+  bool csr_ = true; // the CSR matrix A_ is built and filled (see the constructor)
   int nrows_ = 0;
   MPI_Comm comm_ = MPI_COMM_NULL; // the duplicate held by tcomm_
   Teuchos::RCP<const Teuchos::Comm<int>> tcomm_;
   Teuchos::RCP<const Map> map_;
   Teuchos::RCP<Graph> graph_;
   Teuchos::RCP<Matrix> A_;
+  Teuchos::RCP<MatrixFreeOperator> mf_; // exact operator, projection.matrix_free
+  Teuchos::RCP<const Operator> op_;      // what CG multiplies by: mf_ or A_
   Teuchos::RCP<Vector> b_, x_, x0_, t_;
   Teuchos::RCP<MV> nearNull_;  // exact operator + multigrid: MueLu's near-null space (2 vectors)
   SlotView slot_;

@@ -23,6 +23,7 @@ struct PoissonSettings {
   int chebyshevDegree = 2;
   int coarseSweeps = 10;                 // SGS sweeps on the coarsest multigrid level
   bool fdSingle = true;                  // fast diagonalization's passes in float
+  bool matrixFree = true;                // exact operator: CG applies it without the CSR matrix
 };
 
 } // namespace voigt

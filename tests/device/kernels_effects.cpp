@@ -10,6 +10,7 @@
 #include "kernels/fast_diag.hpp"
 #include "kernels/initial_flow.hpp"
 #include "kernels/momentum.hpp"
+#include "kernels/poisson_apply.hpp"
 #include "kernels/poisson_assembly.hpp"
 #include "kernels/poisson_rows.hpp"
 #include "kernels/prescribed_flow.hpp"
@@ -250,6 +251,25 @@ void projectionExtras(const Grid& g, Fields& f) {
   put("extrapolateIncrement", sumAbs(dp, cells));
   shiftPressureRates(f1, f2, dp, 0.02, cells);
   put("shiftPressureRates", sumAbs(f1, cells) + sumAbs(f2, cells));
+  // The matrix-free exact operator's passes (kernels/poisson_apply.hpp), every fifth row identity.
+  Range3 corners = cells;
+  for (int d = 0; d < 3; ++d) corners.e[d] += 1;
+  const VecField sc{mk(g, "sx"), mk(g, "sy"), mk(g, "sz")}, qf{mk(g, "qx"), mk(g, "qy"), mk(g, "qz")};
+  poissonNodeScale(g, f.coef, sc, corners);
+  put("poissonNodeScale", sumAbs(sc, corners));
+  poissonNodeFlux(f.p, sc, qf, corners);
+  put("poissonNodeFlux", sumAbs(qf, corners));
+  const int nr = int(g.cellsOwned());
+  const RowVector y("y", nr);
+  const RowFlags ident("ident", nr);
+  Kokkos::parallel_for(
+      "check_ident5", Kokkos::RangePolicy<ExecSpace>(0, nr), KOKKOS_LAMBDA(int r) { ident(r) = r % 5 == 0; });
+  poissonCellSum(qf, f.p, y, ident, CellRows{g.ng, g.ln[0], g.ln[1]}, cells);
+  put("poissonCellSum", rowSquares(y, nr));
+  const RowFlags pat("pattern", nr);
+  const Kokkos::View<int, MemSpace> changed("changed");
+  const double bound = poissonRowPattern(ident, pat, GridGeom(g), CellRows{g.ng, g.ln[0], g.ln[1]}, f.coef, nr, changed);
+  put("poissonRowPattern", bound + rowSum(y, ident, nr) * 1e-3);
 
   const int n0 = g.ln[0], n1 = g.ln[1], n2 = g.ln[2], m = n0 * n1 * n2;
   Grid3 a("a", n0, n1, n2), b("b", n0, n1, n2), c("c", n0, n1, n2), back("back", n0, n1, n2);

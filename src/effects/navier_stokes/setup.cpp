@@ -114,8 +114,9 @@ void NavierStokes::registerTasks(Pipeline& p) {
                   cellRange(st.grid, 1));
   });
   p.add(Stage::Projection, name(), std::string("incremental pressure correction, ") +
-        (scene_->projection.op == ProjectionCfg::Op::Exact ? "exact D(1/rho)G, 27-point"
-                                                           : "approximate 7-point Laplacian") +
+        (scene_->projection.op != ProjectionCfg::Op::Exact ? "approximate 7-point Laplacian"
+         : scene_->projection.matrixFree                   ? "exact D(1/rho)G, 27-point, without its matrix"
+                                                           : "exact D(1/rho)G, 27-point CSR matrix") +
         ", CG + " + solverSummary(scene_->projection),
         [this](State& st) { project(st); });
 }
@@ -135,6 +136,7 @@ PoissonSettings poissonSettings(const ProjectionCfg& P) {
   s.chebyshevDegree = P.chebyshevDegree;
   s.coarseSweeps = P.coarseSweeps;
   s.fdSingle = P.fdPrecision == "single";
+  s.matrixFree = P.matrixFree;
   return s;
 }
 
@@ -159,7 +161,11 @@ std::string solverSummary(const ProjectionCfg& P) {
                                            : " [default: multigrid from 32^3 cells or with two densities, else sgs]";
   char tol[32];
   std::snprintf(tol, sizeof tol, "%g", P.tolerance);
-  return s + ", tolerance " + tol + ", at most " + std::to_string(P.maxIterations) + " iterations (then " +
+  const char* tolWhy = "";
+  if (P.toleranceAuto)
+    tolWhy = P.tolerance == ProjectionCfg::kTwoPhaseExactTolerance ? " [default: exact operator, two densities]"
+                                                                   : " [default]";
+  return s + ", tolerance " + tol + tolWhy + ", at most " + std::to_string(P.maxIterations) + " iterations (then " +
          (P.onCap == "stop" ? "stop the run" : "warn and go on") + "), initial guess " + P.initialGuess +
          (P.initialGuessAuto ? " [default with this preconditioner]" : "");
 }

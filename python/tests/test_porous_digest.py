@@ -1,0 +1,75 @@
+"""cases/porous_bed/run_data.py: a run's digest gives plots.py the same numbers as its folder
+(Figs. 4-6, the table and results.csv row), so figures outlive the machine a run was on.
+Two 10 x 30 x 10 runs of the porous bed to t = 0.03 s (about 1 s each). VOIGT names the binary."""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.join(HERE, "..", "..")
+CASE = os.path.join(ROOT, "cases", "porous_bed")
+sys.path.insert(0, CASE)
+try:
+    import numpy as np
+    import run_data
+except ImportError:  # numpy is a --figures package
+    np = None
+
+
+@unittest.skipIf(np is None, "numpy (scripts/setup --figures)")
+class Digest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        voigt = os.environ.get("VOIGT", os.path.join(ROOT, "build", "voigt"))
+        cls.runs = []
+        for mu in (100, 1000):
+            d = os.path.join(cls.tmp.name, "mu%d_extend+global+exact_10x30x10" % mu)
+            subprocess.run([voigt, "run", os.path.join(CASE, "porous_bed.yaml"), "-o", d, "--end-time", "0.03",
+                            "--set", "domain.cells=[10,30,10]", "--set", "output.interval=0.01",
+                            "--set", "probes.0.interval=0.01", "--set", "materials.bed.shear_modulus=%d" % mu],
+                           check=True, capture_output=True)
+            cls.runs.append((mu, d))
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def plots(self, tag, sources, extra=()):
+        out = os.path.join(self.tmp.name, tag)
+        args = [sys.executable, os.path.join(CASE, "plots.py"), "-o", out, "--csv", out + ".csv"] + list(extra)
+        for mu, src in sources:
+            args += ["--run", src, str(mu)]
+        text = subprocess.run(args, check=True, capture_output=True, text=True).stdout
+        with open(out + ".csv") as f:
+            return text.replace(out, "OUT"), f.read()
+
+    def test_digest_gives_the_folder_numbers(self):
+        dig = os.path.join(self.tmp.name, "digests")
+        table_dir, csv_dir = self.plots("from_dirs", self.runs, ["--digests", dig])
+        sources = [(mu, os.path.join(dig, os.path.basename(d) + ".npz")) for mu, d in self.runs]
+        for _, path in sources:
+            self.assertTrue(os.path.exists(path), path)
+            self.assertLess(os.path.getsize(path), 200_000)  # small enough to commit
+        table_dig, csv_dig = self.plots("from_digests", sources)
+        self.assertEqual(table_dir, table_dig)  # every printed number, from doubles
+        self.assertEqual(csv_dir, csv_dig)      # the results.csv rows
+        # Slices are float32 (colour maps): equal to the field's to single precision.
+        a, b = run_data.RunDir(self.runs[0][1]).slices(), run_data.Digest(sources[0][1]).slices()
+        self.assertEqual(list(a[0]), list(b[0]))
+        for (ta, pa, sa), (tb, pb, sb) in zip(a[1], b[1]):
+            self.assertEqual(ta, tb)
+            np.testing.assert_allclose(pb, pa, rtol=1e-6, atol=1e-6 * np.abs(pa).max())
+            np.testing.assert_allclose(sb, sa, rtol=1e-6, atol=1e-6 * np.abs(sa).max())
+
+    def test_digest_refuses_a_time(self):
+        d = os.path.join(self.tmp.name, "x.npz")
+        run_data.write_digest(run_data.RunDir(self.runs[0][1]), d)
+        with self.assertRaises(SystemExit):
+            run_data.load(d, at=0.01)
+
+
+if __name__ == "__main__":
+    unittest.main()
