@@ -15,9 +15,12 @@ constexpr int kStencil = 27; // slot table width: offset o = (di+1) + 3 (dj+1) +
 constexpr int kCentre = 13;
 using SlotView = Kokkos::View<int**, Kokkos::LayoutRight, MemSpace>;
 
-// The 24 node coefficients around cell l, read once: cv[3 corner + d]; returns the row's zero
-// pattern (bit 3 corner + d set when coef_d(corner) != 0).
-KOKKOS_INLINE_FUNCTION int cornerCoefficients(const VecField& coef, const int l[3], double cv[24]) {
+// Row r's cell l and the 24 node coefficients around it, read once: cv[3 corner + d]. Records
+// the row's zero pattern (bit 3 corner + d set when coef_d(corner) != 0) in pattern(r), sets
+// changed() = 1 when it differs from the last call, and returns it.
+KOKKOS_INLINE_FUNCTION int rowCorners(const VecField& coef, const CellRows& rw, int r, const RowFlags& pattern,
+                                      const Kokkos::View<int, MemSpace>& changed, int l[3], double cv[24]) {
+  rw.cell(r, l[0], l[1], l[2]);
   int mask = 0;
   VOIGT_UNROLL
   for (int cn = 0; cn < 8; ++cn)
@@ -27,6 +30,8 @@ KOKKOS_INLINE_FUNCTION int cornerCoefficients(const VecField& coef, const int l[
       cv[3 * cn + d] = v;
       mask |= (v != 0) << (3 * cn + d);
     }
+  if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
+  pattern(r) = mask;
   return mask;
 }
 
@@ -42,11 +47,8 @@ inline double poissonRowPattern(const RowFlags& ident, const RowFlags& pattern, 
   Kokkos::parallel_reduce(
       "poisson_row_pattern", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r, double& rowMax) {
         int l[3];
-        rw.cell(r, l[0], l[1], l[2]);
         double cv[24];
-        const int mask = cornerCoefficients(coef, l, cv);
-        if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
-        pattern(r) = mask;
+        const int mask = rowCorners(coef, rw, r, pattern, changed, l, cv);
         double diag = 0;
         for (int cn = 0; cn < 8; ++cn) {
           const double wi = G.nodeWeightInv(l[0] + (cn & 1), l[1] + ((cn >> 1) & 1), l[2] + ((cn >> 2) & 1));
@@ -69,11 +71,8 @@ inline double assemblePoisson(const Values& vals, const RowMap& rowPtr, const Sl
     Kokkos::parallel_reduce(
         "poisson_fill", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r, double& rowMax) {
           int l[3];
-          rw.cell(r, l[0], l[1], l[2]);
           double cv[24];
-          const int mask = cornerCoefficients(coef, l, cv);
-          if (pattern(r) != mask) changed() = 1; // benign race: every writer stores 1
-          pattern(r) = mask;
+          rowCorners(coef, rw, r, pattern, changed, l, cv);
           for (auto p = rowPtr(r); p < rowPtr(r + 1); ++p) vals(p) = 0;
           if (exact) {
             // A_{c,c'} = sum_{shared nodes n} sum_d coef_d(n)/w_n s_d(c,n) s_d(c',n) / (16 h_d^2)
