@@ -104,19 +104,19 @@ inline void fdTransform(const CGrid3In<T>& in, const Grid3Of<T>& out, const Dens
           for (int r = 0; r < m; ++r) o[r] = 0;
           // Four columns a pass within each block of columns [0, nb), [nb, m) (as the slab form).
           for (int blk = 0; blk < 2; ++blk) {
-            const int tb = blk ? nb : 0, te = blk ? m : nb, rb = tb, re = te;
+            const int tb = blk ? nb : 0, te = blk ? m : nb; // the rows of the same block
             int t = tb;
             for (; t + 3 < te; t += 4) {
               const T w0 = x[t], w1 = x[t + 1], w2 = x[t + 2], w3 = x[t + 3];
               const T *c0 = &W(0, t), *c1 = &W(0, t + 1), *c2 = &W(0, t + 2), *c3 = &W(0, t + 3);
 #pragma GCC ivdep
-              for (int r = rb; r < re; ++r) o[r] += (c0[r] * w0 + c1[r] * w1) + (c2[r] * w2 + c3[r] * w3);
+              for (int r = tb; r < te; ++r) o[r] += (c0[r] * w0 + c1[r] * w1) + (c2[r] * w2 + c3[r] * w3);
             }
             for (; t < te; ++t) {
               const T w = x[t];
               const T* col = &W(0, t);
 #pragma GCC ivdep
-              for (int r = rb; r < re; ++r) o[r] += col[r] * w;
+              for (int r = tb; r < te; ++r) o[r] += col[r] * w;
             }
           }
         });

@@ -54,9 +54,8 @@ class TpetraPoisson final : public PoissonSolver {
     // entries), and projection.matrix_free: false. CG with fast diagonalization or none needs
     // only products, so the exact operator then has no matrix (~330 bytes a cell less).
     const bool matrixFree = exact_ && cfg.matrixFree;
-    csr_ = !matrixFree || (cfg.preconditioner != "fast_diagonalization" && cfg.preconditioner != "none");
     buildMap(g);
-    if (csr_) {
+    if (!matrixFree || (cfg.preconditioner != "fast_diagonalization" && cfg.preconditioner != "none")) {
       buildGraph();
       A_ = Teuchos::rcp(new Matrix(graph_));
       A_->fillComplete();
@@ -82,9 +81,9 @@ class TpetraPoisson final : public PoissonSolver {
 
   void setCoefficients(const VecField& coef) override {
     const double t0 = MPI_Wtime();
-    if (csr_) A_->resumeFill();
+    if (!A_.is_null()) A_->resumeFill();
     const bool patternChanged = fillValues(coef);
-    if (csr_) A_->fillComplete();
+    if (!A_.is_null()) A_->fillComplete();
     if (!mf_.is_null()) mf_->setCoefficients(coef);
     auto applyA = [this](const RowVector& in, const RowVector& out) {
       Kokkos::deep_copy(devView(*x_), in);
@@ -260,12 +259,12 @@ class TpetraPoisson final : public PoissonSolver {
 
   // Values from coef (assemblePoisson); sets anorm_ = ||A||_inf and returns whether the
   // zero pattern changed, globally.
-  // Without a matrix (csr_ false) only the pattern, the identity rows and a bound on ||A||
+  // Without a matrix (A_ null) only the pattern, the identity rows and a bound on ||A||
   // within 8x (poissonRowPattern).
   bool fillValues(const VecField& coef) {
     Kokkos::View<int, MemSpace> changed("poisson_pattern_changed");
     double amax;
-    if (csr_) {
+    if (!A_.is_null()) {
       auto lcl = A_->getLocalMatrixDevice();
       amax = assemblePoisson(lcl.values, lcl.graph.row_map, slot_, ident_, pattern_, geom_, rows_, exact_, coef,
                              nrows_, changed);
@@ -349,13 +348,12 @@ class TpetraPoisson final : public PoissonSolver {
   Range3 cells_;
   PoissonSettings cfg_;
   bool exact_ = true, ready_ = false;
-  bool csr_ = true; // the CSR matrix A_ is built and filled (see the constructor)
   int nrows_ = 0;
   MPI_Comm comm_ = MPI_COMM_NULL; // the duplicate held by tcomm_
   Teuchos::RCP<const Teuchos::Comm<int>> tcomm_;
   Teuchos::RCP<const Map> map_;
   Teuchos::RCP<Graph> graph_;
-  Teuchos::RCP<Matrix> A_;
+  Teuchos::RCP<Matrix> A_;                 // null without a matrix (see the constructor)
   Teuchos::RCP<MatrixFreeOperator> mf_; // exact operator, projection.matrix_free
   Teuchos::RCP<const Operator> op_;      // what CG multiplies by: mf_ or A_
   Teuchos::RCP<Vector> b_, x_, x0_, t_;
