@@ -5,7 +5,10 @@ axis, bending of the mid-surface, and the gaps to the cylinder and the base; con
 (gap < contact_gap) marked. Python 3 + matplotlib.
 
     cases/falling_block/plots.py -o diagnostics.png --run output/fb_1000 "mu_S = 1000 Pa" \\
-        --run output/fb_5000 "mu_S = 5000 Pa" [--title TEXT]
+        --run output/fb_5000 "mu_S = 5000 Pa" [--title TEXT] [--csv results.csv] [--digests DIR]
+
+A run is its output folder or its digest (<run id>.npz, voigt_post/digest.py; --digests writes
+them for finished runs, and the study commits them in cases/falling_block/digests/).
 
 Also prints three markdown tables: the contact times with tilt and bending at the paper's times,
 the block's state at STATE_TIMES (centroid, tilt, bending, gaps in cells, energy ratio, volume
@@ -21,10 +24,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import series  # noqa: E402
+from voigt_post import digest, series  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
 PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
+DIGEST_PROBES = {"impact": (0.035, 0.11)}   # waves.py's window (0.04-0.10 s), not the probes of block_track.py
 STATE_TIMES = (0.04, 0.06, 0.08, 0.10, 0.12, 0.16, 0.20, 0.24, 0.30, 0.36, 0.42, 0.50)
 STATE_KEYS = ("solid_potential_energy", "kinetic_energy", "elastic_energy", "solid_cy", "solid_cx", "solid_tilt_deg",
               "solid_bending", "solid_gap_obstacle0", "solid_gap_y-", "volume_drift")
@@ -53,6 +57,8 @@ def main():
     ap.add_argument("--title", default="")
     ap.add_argument("-o", "--output", required=True)
     ap.add_argument("--csv", help="also merge one row per finished run (results_row) into this CSV by run id")
+    ap.add_argument("--digests", metavar="DIR", help="also write each finished run folder's digest to "
+                    "DIR/<run id>.npz (voigt_post/digest.py: what this script, render.py and waves.py read)")
     a = ap.parse_args()
     fig, ax = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     ax = ax.ravel()
@@ -87,6 +93,11 @@ def main():
             evs.append((label, events(cols, cell)))
         if series.finished(summ):
             results.append(results_row(d, cols, summ))
+            if a.digests and not digest.is_digest(d):
+                os.makedirs(a.digests, exist_ok=True)
+                path = digest.write(d, os.path.join(a.digests, digest.run_id(d) + digest.SUFFIX), PAPER_TIMES,
+                                    probes=DIGEST_PROBES)
+                print("plots.py: digest %s (%.0f kB)" % (path, os.path.getsize(path) / 1e3))
     if h:
         ax[3].axhline(1000 * h, color="k", lw=0.8, ls=":", label="contact gap (1 cell)")
     ax[0].set_ylabel("centroid height (mm)")

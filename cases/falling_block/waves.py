@@ -31,7 +31,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from plots import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import series  # noqa: E402
+from voigt_post import digest, series  # noqa: E402
 from voigt_post.scene_record import cylinder  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
@@ -114,7 +114,7 @@ def main():
     ap.add_argument("--title", default="")
     ap.add_argument("-o", "--output", required=True)
     a = ap.parse_args()
-    missing = [d for d, _ in a.run if not os.path.exists(os.path.join(d, "probe_impact.csv"))]
+    missing = [d for d, _ in a.run if not series.has(d, "probe_impact.csv")]
     for d in missing:
         print("waves.py: %s has no probe_impact.csv (run before the probe was in the scene): skipped" % d)
     a.run = [r for r in a.run if r[0] not in missing]
@@ -137,7 +137,7 @@ def main():
         else:
             cx, cy, cr = cylinder(d)
             src = (cx, cy + cr)
-        h = frames(d)[0].spacing[0]
+        h = (digest.frames(d) if digest.is_digest(d) else frames(d))[0].spacing[0]
         ti = impact_time(d)
         t0 = max(a.window[0], (ti - 0.002) if ti else a.window[0])
         arrive, fits = front(t, x, y, psi, s2, t0, a.window[1], a.level, h, src)

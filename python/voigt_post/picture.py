@@ -9,7 +9,8 @@ command re-runs itself under xvfb-run).
 Colour: `--field` (default log10_S2 when the output has it, else none) sampled one cell on the
 psi > 0 side of the surface (along grad psi): for a solid phase the band's fluid side can carry
 stress integrated from the surrounding flow (cases/falling_block/README.md), which would
-otherwise colour the surface. The frame nearest each requested time is drawn.
+otherwise colour the surface. The frame nearest each requested time is drawn. A run may be
+its digest (digest.py), which keeps psi and the colour around the surface at a few times.
 """
 import argparse
 import os
@@ -17,7 +18,7 @@ import shutil
 import subprocess
 import sys
 
-from . import fields
+from . import digest, fields
 from .scene_record import scene
 from .xdmf import frames
 
@@ -39,13 +40,30 @@ def _headless():
     sys.exit(subprocess.call(["xvfb-run", "-a", "-s", "-screen 0 1920x1080x24"] + cmd + sys.argv[1:], env=env))
 
 
-def surface(path, orig, sp, field):
-    """psi = 0 as smooth-shaded polydata; with `field`, its value one cell on the psi > 0 side."""
+def _arrays(f, field):
+    """(psi, colour or None, the arrays' origin) of an output: a fields.xdmf frame, or a digest's
+    (digest.py: cropped around the surface, float32)."""
+    if isinstance(f, digest.Frame):
+        return f.psi, (f.colour if field and field == f.field else None), f.crop_origin
+    return fields.read(f.path, "psi"), (fields.read(f.path, field) if field else None), f.origin
+
+
+def _frames(d):
+    return digest.frames(d) if digest.is_digest(d) else frames(d)
+
+
+def _has_field(d, field):
+    if digest.is_digest(d):
+        return any(f.field == field for f in digest.frames(d))
+    return field in fields.names(frames(d)[0].path)
+
+
+def surface(psi, col, orig, sp, field):
+    """psi = 0 as smooth-shaded polydata; with `field` (its array col), its value one cell on the
+    psi > 0 side. Arrays in (z, y, x) order, orig the centre-of-cell grid's lower corner."""
     import numpy as np
     import vtk
     from vtk.util import numpy_support as ns
-    psi = fields.read(path, "psi")
-    col = fields.read(path, field) if field else None
     gz, gy, gx = np.gradient(psi, sp[2], sp[1], sp[0])
     arrays = {"psi": psi, "grad": np.stack([gx, gy, gz], axis=-1)}
     if col is not None:
@@ -160,19 +178,20 @@ def draw(runs, times, output, field=None, title="", rng=None, panel=(260, 230), 
     import vtk
     from vtk.util import numpy_support as ns
     if field is None:
-        field = "log10_S2" if "log10_S2" in fields.names(frames(runs[0][0])[0].path) else ""
+        field = "log10_S2" if _has_field(runs[0][0], "log10_S2") else ""
     rows, cols = len(runs), len(times)
     pw, ph = panel
     top, bar = 28, (60 if field else 0)
     W, H = pw * cols, ph * rows + top + bar
     panels = []
     for d, label in runs:
-        fr = frames(d)
+        fr = _frames(d)
         sc = scene(d) or legacy_obstacles
         for c, t in enumerate(times):
             f = min(fr, key=lambda g: abs(g.t - t))
             hi = [o + s * n for o, s, n in zip(f.origin, f.spacing, f.cells)]
-            panels.append((len(panels) // cols, c, label, f.t, surface(f.path, f.origin, f.spacing, field),
+            psi, col, orig = _arrays(f, field)
+            panels.append((len(panels) // cols, c, label, f.t, surface(psi, col, orig, f.spacing, field),
                            f.origin, hi, obstacle_sources(sc, f.origin, hi)))
     if field and rng is None:
         vals = [ns.vtk_to_numpy(p[4].GetPointData().GetScalars()) for p in panels
@@ -263,11 +282,11 @@ def main(argv=None, legacy_obstacles=None):
     if not runs:
         ap.error("no run directory")
     for d, _ in runs:
-        if not os.path.exists(os.path.join(d, "fields.xdmf")):
-            ap.error("%s: no fields.xdmf (not a Voigt run's output directory?)" % d)
+        if not digest.is_digest(d) and not os.path.exists(os.path.join(d, "fields.xdmf")):
+            ap.error("%s: no fields.xdmf (not a Voigt run's output directory or digest?)" % d)
     times = a.times
     if times is None:
-        fr = frames(runs[0][0])
+        fr = _frames(runs[0][0])
         n = min(4, len(fr))
         times = [fr[round(i * (len(fr) - 1) / max(n - 1, 1))].t for i in range(n)]
     _headless()

@@ -20,7 +20,13 @@ def record_path(outdir):
 
 
 def scene(outdir):
-    """The run's scene as a dict, or None when the run has no record."""
+    """The run's scene as a dict, or None when the run has no record (OUTDIR: a folder or a
+    digest, which keeps the newest record)."""
+    from . import digest
+    if digest.is_digest(outdir):
+        import yaml
+        data = digest.text(outdir, "scene.yaml")
+        return None if data is None else yaml.safe_load(data)
     path = record_path(outdir)
     if path is None:
         return None

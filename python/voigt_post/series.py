@@ -5,22 +5,44 @@
 - probe(outdir, name): probe_<name>.csv, the samples grouped by time; probe_array: all rows;
 - read_csv, write_csv: the CSV tables the studies write (rows as dicts of strings).
 
+OUTDIR may also be a run's digest (digest.py: <run id>.npz), which holds copies of these files.
+
     from voigt_post import series
     cols = series.timeseries("output/run")   # cols["t"], cols["solid_vy"], ... (floats)
 """
 import csv
 import fcntl
 import json
+import io
 import os
 
+from . import digest
+
 _RAISE = object()
+
+
+def _open(outdir, name):
+    """OUTDIR/NAME as a text file, from the folder or from the digest's copy."""
+    if digest.is_digest(outdir):
+        data = digest.text(outdir, name)
+        if data is None:
+            raise FileNotFoundError("%s holds no %s" % (outdir, name))
+        return io.StringIO(data, newline=None)
+    return open(os.path.join(outdir, name), newline="")
+
+
+def has(outdir, name):
+    """Whether the run (folder or digest) has the file NAME."""
+    if digest.is_digest(outdir):
+        return digest.text(outdir, name) is not None
+    return os.path.exists(os.path.join(outdir, name))
 
 
 def summary(outdir, default=_RAISE):
     """OUTDIR/summary.json as a dict. Without `default` a missing or unreadable (half-written)
     file raises OSError or ValueError; with it, `default` is returned instead."""
     try:
-        with open(os.path.join(outdir, "summary.json")) as f:
+        with _open(outdir, "summary.json") as f:
             return json.load(f)
     except (OSError, ValueError):
         if default is _RAISE:
@@ -28,10 +50,10 @@ def summary(outdir, default=_RAISE):
         return default
 
 
-def _rows(path):
+def _rows(outdir, name):
     """Header and the rows with as many values as the header (a run still writing may have left
     its last line short)."""
-    with open(path, newline="") as f:
+    with _open(outdir, name) as f:
         r = csv.reader(f)
         head = next(r, [])
         return head, [row for row in r if len(row) == len(head)]
@@ -40,7 +62,7 @@ def _rows(path):
 def timeseries(outdir):
     """OUTDIR/timeseries.csv as {column: [float per step]}. Values that are not numbers (empty
     cells) are left out of their column; a column of text (dt_reason) is left out."""
-    head, rows = _rows(os.path.join(outdir, "timeseries.csv"))
+    head, rows = _rows(outdir, "timeseries.csv")
     cols = {}
     for row in rows:
         for k, v in zip(head, row):
@@ -59,7 +81,7 @@ def probe_path(outdir, name):
 def probe(outdir, name):
     """OUTDIR/probe_NAME.csv as {t: [row, ...]} in the order written, each row a dict of floats
     (t, s, x, y, z and the probed fields: psi, velocity_x, ...)."""
-    head, rows = _rows(probe_path(outdir, name))
+    head, rows = _rows(outdir, "probe_%s.csv" % name)
     out = {}
     for row in rows:
         r = dict(zip(head, (float(v) for v in row)))
@@ -68,10 +90,11 @@ def probe(outdir, name):
 
 
 def probe_array(path):
-    """Every row of a probe file (a path, or (outdir, name)) as a numpy structured array."""
+    """Every row of a probe file (a path, or (outdir or digest, name)) as a numpy structured array."""
     import numpy as np
     if isinstance(path, tuple):
-        path = probe_path(*path)
+        with _open(path[0], "probe_%s.csv" % path[1]) as f:
+            return np.genfromtxt(f, delimiter=",", names=True)
     return np.genfromtxt(path, delimiter=",", names=True)
 
 
@@ -112,7 +135,7 @@ def run_row(d, summ):
     if wall is None:                       # this segment's, then
         wall = summ.get("wall_seconds")
     return {
-        "run_id": os.path.basename(os.path.normpath(d)),
+        "run_id": digest.run_id(d),
         "mu_S": fmt(el.get("shear_modulus"), "%g"),
         "model": el.get("fluid_side", ""),
         "volume_correction": ls.get("volume_correction", "none"),
