@@ -26,6 +26,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
 from voigt_post import digest, series  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
+from events import cell, measure, results_row, rows as event_rows  # noqa: E402
 
 PAPER_TIMES = (0.04, 0.08, 0.12, 0.24, 0.36, 0.5)
 DIGEST_PROBES = {"impact": (0.035, 0.11)}   # waves.py's window (0.04-0.10 s), not the probes of block_track.py
@@ -83,14 +84,14 @@ def main():
         rows.append((label, first["obstacle0"], starts[1] if len(starts) > 1 else None, first["y-"],
                      [at(cols, "solid_tilt_deg", tt) for tt in PAPER_TIMES],
                      [at(cols, "solid_bending", tt) for tt in PAPER_TIMES]))
-        gap = sb.get("contact_gap")
-        if gap:
-            cell, h = gap / sb.get("contact_gap_cells", 1.0), gap
-        else:  # a run still going: the grid's h
-            cell = frames(d)[0].spacing[0] if not summ else None
-        states.append((label, state_rows(cols, cell)))
-        if cell:
-            evs.append((label, events(cols, cell)))
+        h_run = cell(summ)
+        if h_run:
+            h = sb["contact_gap"]
+        elif not summ:  # a run still going: the grid's h
+            h_run = frames(d)[0].spacing[0]
+        states.append((label, state_rows(cols, h_run)))
+        if h_run:
+            evs.append((label, event_rows(measure(cols, h_run))))
         if series.finished(summ):
             results.append(results_row(d, cols, summ))
             if a.digests and not digest.is_digest(d):
@@ -156,131 +157,6 @@ def state_rows(cols, h):
                     g["solid_gap_obstacle0"] / h if h else nan, g["solid_gap_y-"] / h if h else nan,
                     ratio, 100 * g["volume_drift"]))
     return out
-
-def first(ts, vals, test, t0=0.0):
-    """(t, value) of the first sample at t >= t0 that passes test, or None."""
-    for t, v in zip(ts, vals):
-        if t >= t0 and test(v):
-            return t, v
-    return None
-
-
-def slowing(ts, vy):
-    """(t, vy) when the block's mean vy stops falling: it first rises 1 % of its size above its
-    running minimum; None if it never does. The impact time of plots.py and waves.py."""
-    low = 0.0
-    for t, v in zip(ts, vy):
-        low = min(low, v)
-        if low < 0 and v > low + 0.01 * abs(low):
-            return t, low
-    return None
-
-
-def first_peak(ts, vals, t0, rise=2.0, drop=0.8):
-    """(t, value) of the first maximum after t0 of a quantity that has grown to `rise` times its
-    value at t0 and then fallen below `drop` times that maximum; None if it never does. The
-    bending of the impact itself: a stiff block's later oscillations can exceed it."""
-    top, v0 = None, None
-    for t, v in zip(ts, vals):
-        if t < t0:
-            continue
-        if v0 is None:
-            v0 = v
-        if top is None or v > top[1]:
-            top = (t, v)
-        elif top[1] > rise * v0 and v < drop * top[1]:
-            return top
-    return None
-
-
-def extreme(ts, vals, t0, t1, pick=max):
-    """(t, value) of the largest (pick=max) or smallest value in [t0, t1], or None."""
-    s = [(v, t) for t, v in zip(ts, vals) if t0 <= t <= t1]
-    return None if not s else tuple(reversed(pick(s)))
-
-
-EVENT_NAMES = ("mean vy stops falling (s; vy m/s)", "smallest gap to the cylinder in the impact (h, at s)",
-               "lowest centroid (mm, at s)", "rebound (mm, to s)",
-               "closest to the cylinder after the rebound, before the base (h, at s)",
-               "first bending peak after the impact (mm, at s)",
-               "slowing to peak bending (ms)", "base: gap < 2 h from (s)", "peak tilt (deg, at s)",
-               "largest energy ratio (at s)", "energy ratio, volume change at the end (t s)")
-
-
-def results_row(d, cols, summ):
-    """Issue 22's falling-block table: one finished run (its directory and summary.json)."""
-    cont = summ.get("solid_body", {}).get("contacts", {})
-    ts, pe0 = cols["t"], cols["solid_potential_energy"][0]
-    ratio = [(k + e) / (pe0 - p) if pe0 - p > 0 else 0.0
-             for k, e, p in zip(cols["kinetic_energy"], cols["elastic_energy"], cols["solid_potential_energy"])]
-    late = [r for t, r in zip(ts, ratio) if t >= 0.03]  # as events(): before, the released energy is ~0
-    fmt = series.fmt
-    ls = summ.get("level_set", {})
-    sharp0 = ls.get("sharp_volume_initial")
-    return dict(series.run_row(d, summ), **{
-        "first_impact_s": fmt(cont.get("obstacle0", {}).get("first_contact_time")),
-        "base_impact_s": fmt(cont.get("y-", {}).get("first_contact_time")),
-        "peak_bending_mm": fmt(1000 * max(cols["solid_bending"]), "%.2f"),
-        "max_energy_ratio": fmt(max(late) if late else None, "%.3f"),
-        # The smoothed volume (what the global correction holds) and the sharp one (psi > 0).
-        "volume_change_pct": fmt(100 * cols["volume_drift"][-1], "%.2f"),
-        "sharp_volume_change_pct": fmt(100 * (ls["sharp_volume"] / sharp0 - 1) if sharp0 else None, "%.2f"),
-        "free_fall_elastic_over_kinetic": fmt(free_fall_elastic(cols, summ), "%.2e"),
-    })
-
-
-def free_fall_elastic(cols, summ):
-    """Issue 21's "no elastic energy before contact": the largest elastic / kinetic energy while
-    the block's smoothing band (kappa h outside psi = 0, Eq. 4) is clear of the cylinder and the
-    base, i.e. before anything but air can load it."""
-    sb, ls = summ.get("solid_body", {}), summ.get("level_set", {})
-    if not sb.get("contact_gap") or not ls.get("smoothing_cells"):
-        return None
-    band = ls["smoothing_cells"] * sb["contact_gap"] / sb.get("contact_gap_cells", 1.0)
-    worst = None
-    for e, k, g0, g1 in zip(cols["elastic_energy"], cols["kinetic_energy"], cols["solid_gap_obstacle0"],
-                            cols["solid_gap_y-"]):
-        if min(g0, g1) <= band:
-            break
-        if k > 0:
-            worst = max(worst or 0.0, e / k)
-    return worst
-
-
-def events(cols, h):
-    """The impact and what follows, by one rule for every run (gaps in cells of size h)."""
-    ts = cols["t"]
-    slow = slowing(ts, cols["solid_vy"])
-    if not slow:   # no impact: nothing below is defined
-        return [(name, "-") for name in EVENT_NAMES]
-    t_s = slow[0]
-    lowest = extreme(ts, cols["solid_cy"], t_s, t_s + 0.05, min)
-    rebound = extreme(ts, cols["solid_cy"], lowest[0], lowest[0] + 0.08) if lowest else None
-    bend = first_peak(ts, cols["solid_bending"], t_s)
-    gap = [g / h for g in cols["solid_gap_obstacle0"]]
-    closest = extreme(ts, gap, t_s, t_s + 0.05, min)
-    base = first(ts, [g / h for g in cols["solid_gap_y-"]], lambda g: g < 2)
-    # The paper's second hit (~0.2 s): how close the block comes back once it has rebounded.
-    again = extreme(ts, gap, rebound[0], base[0] if base else ts[-1], min) if rebound else None
-    pe0 = cols["solid_potential_energy"][0]
-    ratio = [(k + e) / (pe0 - p) if pe0 - p > 0 else 0.0
-             for k, e, p in zip(cols["kinetic_energy"], cols["elastic_energy"], cols["solid_potential_energy"])]
-    rows = [
-        ("mean vy stops falling (s; vy m/s)", "%.4f (%.3f)" % slow),
-        ("smallest gap to the cylinder in the impact (h, at s)", "-" if not closest else "%.2f at %.4f" % closest[::-1]),
-        ("lowest centroid (mm, at s)", "-" if not lowest else "%.1f at %.4f" % (1000 * lowest[1], lowest[0])),
-        ("rebound (mm, to s)", "-" if not rebound else "%.1f to %.4f" % (1000 * (rebound[1] - lowest[1]), rebound[0])),
-        ("closest to the cylinder after the rebound, before the base (h, at s)",
-         "-" if not again else "%.2f at %.4f" % again[::-1]),
-        ("first bending peak after the impact (mm, at s)", "-" if not bend else "%.2f at %.4f" % (1000 * bend[1], bend[0])),
-        ("slowing to peak bending (ms)", "-" if not bend else "%.1f" % (1000 * (bend[0] - slow[0]))),
-        ("base: gap < 2 h from (s)", "-" if not base else "%.4f" % base[0]),
-        ("peak tilt (deg, at s)", "%.1f at %.3f" % extreme(ts, [abs(v) for v in cols["solid_tilt_deg"]], 0, ts[-1])[::-1]),
-        ("largest energy ratio (at s)", "%.2f at %.3f" % extreme(ts, ratio, 0.03, ts[-1])[::-1]),
-        ("energy ratio, volume change at the end (t s)", "%.2f, %.1f %% (%.3f)" % (ratio[-1], 100 * cols["volume_drift"][-1], ts[-1])),
-    ]
-    assert tuple(r[0] for r in rows) == EVENT_NAMES
-    return rows
 
 
 if __name__ == "__main__":

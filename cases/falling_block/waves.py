@@ -29,7 +29,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from plots import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
+from events import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
 from voigt_post import digest, series  # noqa: E402
 from voigt_post.scene_record import cylinder  # noqa: E402
