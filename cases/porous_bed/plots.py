@@ -34,18 +34,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))  # run_data
-from run_data import RunDir, Y0, Y1, load, write_digest  # noqa: E402
+from run_data import G, RHO, RunDir, Y0, Y1, ergun, load, write_digest  # noqa: E402
 from voigt_post import series  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-RHO, MU, U, D, G = 1.0, 1e-5, 0.1, 0.025, 9.81
-
-
-def ergun(e):
-    """Paper Eq. (23): -dp/dy of a rigid bed of voidage e (Pa/m)."""
-    return (1 - e) / e ** 3 * RHO * U ** 2 / D * (150 * (1 - e) * MU / (D * U * RHO) + 1.75)
-
-
 def results_row(run, summ, t, mean, section, rise):
     """Issue 22's porous-bed table: one finished run (a run_data source and its summary.json)."""
     ls = summ.get("level_set", {})

@@ -18,7 +18,13 @@ from voigt_post import fields, series  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 
 Y0, Y1 = 0.10, 0.25  # the paper's bed interior
+RHO, MU, U, D, G = 1.0, 1e-5, 0.1, 0.025, 9.81   # the scene's gas, inflow, sphere diameter, gravity
 MAX_SERIES = 2000    # centroid samples kept in a digest (thinned evenly; Fig. 8 draws a line)
+
+
+def ergun(e):
+    """Paper Eq. (23): -dp/dy of a rigid bed of voidage e (Pa/m)."""
+    return (1 - e) / e ** 3 * RHO * U ** 2 / D * (150 * (1 - e) * MU / (D * U * RHO) + 1.75)
 
 
 def _section_gradient(pbar, dy):

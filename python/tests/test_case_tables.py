@@ -1,0 +1,82 @@
+"""The cases' table.py (falling block, porous bed): the paper-vs-Voigt tables quote results.csv
+and, for runs not finished, the ledger; with --readme they replace only what lies between their
+markers; the porous bed's fit of the gradient against mu_S is least squares."""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CASES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases")
+CASE = os.path.join(CASES, "falling_block")
+RESULT = {"run_id": "mu1000_extend+global+exact_75", "steps": "3667", "wall_s": "5100", "ranks": "2",
+          "slowing_s": "0.0607", "slowing_vy": "-0.535", "impact_gap_h": "0.52", "first_impact_s": "0.0597",
+          "rebound_mm": "8.2", "rebound_to_s": "0.1267", "second_contact_s": "0.1465", "base_within_2h_s": "0.3288",
+          "first_bending_peak_mm": "3.75", "first_bending_peak_s": "0.0803", "max_energy_ratio": "0.990"}
+LEDGER = {"run_id": "mu2000_extend+global+exact_75", "state": "wall_limit", "t_reached": "0.21", "steps": "1500",
+          "wall_s": "1200.5", "to_finish_s": "2000"}
+
+
+def write(path, *rows):
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+class TableTest(unittest.TestCase):
+    def test_quotes_the_csvs_and_keeps_the_readme(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            res, led, readme = (os.path.join(tmp, n) for n in ("results.csv", "runs.csv", "README.md"))
+            write(res, RESULT)
+            write(led, LEDGER)
+            with open(readme, "w") as f:
+                f.write("# before\n<!-- table.py: begin -->\nold table\n<!-- table.py: end -->\nafter\n")
+            cmd = [sys.executable, os.path.join(CASE, "table.py"), "--results", res, "--ledger", led]
+            subprocess.run(cmd + ["--readme", readme], check=True, capture_output=True)
+            with open(readme) as f:
+                doc = f.read()
+            self.assertTrue(doc.startswith("# before\n<!-- table.py: begin -->\n"))
+            self.assertTrue(doc.endswith("<!-- table.py: end -->\nafter\n"))
+            self.assertNotIn("old table", doc)
+            for v in RESULT.values():
+                if v != RESULT["run_id"]:
+                    self.assertIn(v, doc)
+            self.assertIn("*not finished*: wall_limit at t = 0.21 s (1500 steps, 1200.5 s); to finish ~2000 s", doc)
+            self.assertEqual(doc.count("*not run*"), 4)      # 5000 extend and the three integrate runs
+            rows = [line for line in doc.splitlines() if line.startswith("| ")]
+            self.assertEqual(len(rows), 1 + 8)               # header and the eight quantities
+            self.assertTrue(all(r.count(" | ") == 7 for r in rows))   # quantity, paper and six runs
+
+
+class PorousTableTest(unittest.TestCase):
+    def test_fit_and_cells(self):
+        sys.path.insert(0, os.path.join(CASES, "porous_bed"))
+        import table
+        slope, icpt, r2 = table.fit([100, 250, 1000], [60.0, 75.0, 150.0])   # on the line 0.1 mu + 50
+        self.assertAlmostEqual(slope, 0.1, places=12)
+        self.assertAlmostEqual(icpt, 50.0, places=10)
+        self.assertAlmostEqual(r2, 1.0, places=12)
+        self.assertIsNone(table.fit([100], [1.0]))
+        # Ergun at e = 0.4 (Eq. 23 by hand: 0.6 / 0.064 * 0.01 / 0.025 * (150 * 0.6 * 1e-5 / 2.5e-3 + 1.75) = 7.91 Pa/m)
+        self.assertAlmostEqual(table.ergun(0.4), 0.6 / 0.064 * 0.4 * (0.36 + 1.75), places=10)
+        with tempfile.TemporaryDirectory() as tmp:
+            res, led = os.path.join(tmp, "results.csv"), os.path.join(tmp, "runs.csv")
+            rows = [{"run_id": "mu%d_extend+global+exact_50x150x50" % mu, "t_end": "1.0000", "steps": "9000",
+                     "wall_s": "9999", "section_gradient": "%.1f" % (0.1 * mu + 50), "mean_gradient": "1.0",
+                     "centroid_rise_mm": "1.00", "sharp_volume_change_pct": "1.20"} for mu in (100, 250, 1000)]
+            rows.append(dict(rows[0], run_id="mu500_extend+global+exact_50x150x50", t_end="0.5000"))  # not at 1 s
+            write(res, *rows)
+            write(led, dict(LEDGER, run_id="mu500_extend+global+exact_50x150x50"))
+            out = subprocess.run([sys.executable, os.path.join(CASES, "porous_bed", "table.py"), "--results", res,
+                                  "--ledger", led, "--packing", os.path.join(tmp, "none.json")],
+                                 check=True, capture_output=True, text=True).stdout
+            self.assertIn("| 60.0 Pa/m | 75.0 Pa/m | *not finished*: wall_limit at t = 0.21 s", out)
+            self.assertIn("*not run* | 150.0 Pa/m |", out)           # 750 Pa: in neither file
+            self.assertIn("section-averaged gradient against mu_S (3 finished moduli", out)
+            self.assertIn("0.1 Pa/m per Pa, intercept 50 Pa/m, R^2 = 1.000", out)
+
+
+if __name__ == "__main__":
+    unittest.main()
