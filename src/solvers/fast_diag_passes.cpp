@@ -1,6 +1,7 @@
-// One application of the fast diagonalization, z = A0^+ r = V (Lambda3^+ (V^T r)): the passes of
-// kernels/fast_diag.hpp in order, in double or (mixed precision) in float, and on more than one
-// rank the moves between blocks, z-slabs and y-slabs (fast_diagonalization.hpp).
+// One application of the fast diagonalization, z = A0^+ r = V (Lambda3^+ (V^T r)), or with a
+// solve axis s (V_a (x) V_c) T^-1 (V_a^T (x) V_c^T) r: the passes of kernels/fast_diag.hpp and
+// fd_tridiagonal.hpp in order, in double or (mixed precision) in float, and on more than one
+// rank the moves between blocks, outer and inner slabs (fast_diagonalization.hpp).
 #include "solvers/fast_diagonalization.hpp"
 
 #include <string>
@@ -41,18 +42,18 @@ void FastDiagonalization::allocate(Passes<T>& P) const {
     return Grid3Of<T>(std::string(tag) + name, b.n[0], b.n[1], b.n[2]);
   };
   if (size_ > 1) {
-    P.z1 = grid("z1", zs_);
-    P.z2 = grid("z2", zs_);
-    P.y1 = grid("y1", ys_);
-    P.y2 = grid("y2", ys_);
-    P.zh = Kokkos::create_mirror_view(P.z1);
-    P.yh = Kokkos::create_mirror_view(P.y1);
+    P.o1 = grid("o1", outer_);
+    P.o2 = grid("o2", outer_);
+    P.i1 = grid("i1", inner_);
+    P.i2 = grid("i2", inner_);
+    P.oh = Kokkos::create_mirror_view(P.o1);
+    P.ih = Kokkos::create_mirror_view(P.i1);
     P.rowsH.resize(g_.cellsOwned());
   } else {
-    P.z1 = grid("t1", zs_);
-    P.z2 = grid("t2", zs_);
-    P.y1 = P.z1;
-    P.y2 = P.z2;
+    P.o1 = grid("t1", outer_);
+    P.o2 = grid("t2", outer_);
+    P.i1 = P.o1;
+    P.i2 = P.o2;
   }
   if (!std::is_same<T, double>::value) {
     P.r = Rows<T>(std::string(tag) + "rows_in", g_.cellsOwned());
@@ -79,25 +80,53 @@ void FastDiagonalization::build(Passes<T>& P, const Grid3& inv) const {
   const int nb0 = nb_[0], nb1 = nb_[1], nb2 = nb_[2], n0 = n_[0], n1 = n_[1], n2 = n_[2];
   const DenseOf<T> V0 = P.V[0], V1 = P.V[1], V2 = P.V[2];
   const CG inverse = P.inv;
-  P.xy.clear();
-  P.z.clear();
-  P.yx.clear();
-  if (nb0 < n0) P.xy.push_back([](const CG& i, const G& o) { fdFold<0>(i, o); });
-  P.xy.push_back([=](const CG& i, const G& o) { fdTransform<0, false>(i, o, V0, nb0); });
-  if (nb1 < n1) P.xy.push_back([](const CG& i, const G& o) { fdFold<1>(i, o); });
-  P.xy.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
-  if (nb2 < n2) P.z.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
-  P.z.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
-  P.z.push_back([=](const CG& i, const G& o) { fdScale<T>(i, inverse, o); });
-  P.z.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
-  if (nb2 < n2) P.z.push_back([](const CG& i, const G& o) { fdUnfold<2>(i, o); });
-  P.yx.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
-  if (nb1 < n1) P.yx.push_back([](const CG& i, const G& o) { fdUnfold<1>(i, o); });
-  P.yx.push_back([=](const CG& i, const G& o) { fdTransform<0, true>(i, o, V0, nb0); });
-  if (nb0 < n0) P.yx.push_back([](const CG& i, const G& o) { fdUnfold<0>(i, o); });
-  P.all = P.xy;
-  P.all.insert(P.all.end(), P.z.begin(), P.z.end());
-  P.all.insert(P.all.end(), P.yx.begin(), P.yx.end());
+  P.fwd.clear();
+  P.inner.clear();
+  P.back.clear();
+  if (nb0 < n0) P.fwd.push_back([](const CG& i, const G& o) { fdFold<0>(i, o); });
+  P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<0, false>(i, o, V0, nb0); });
+  if (s_ == 1) { // x and z on y-slabs; y solved on z-slabs
+    if (nb2 < n2) P.fwd.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
+    P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
+    P.back.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
+    if (nb2 < n2) P.back.push_back([](const CG& i, const G& o) { fdUnfold<2>(i, o); });
+  } else {       // x and y on z-slabs; z solved, or transformed and scaled, on y-slabs
+    if (nb1 < n1) P.fwd.push_back([](const CG& i, const G& o) { fdFold<1>(i, o); });
+    P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
+    P.back.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
+    if (nb1 < n1) P.back.push_back([](const CG& i, const G& o) { fdUnfold<1>(i, o); });
+  }
+  P.back.push_back([=](const CG& i, const G& o) { fdTransform<0, true>(i, o, V0, nb0); });
+  if (nb0 < n0) P.back.push_back([](const CG& i, const G& o) { fdUnfold<0>(i, o); });
+  if (s_ < 0) {
+    if (nb2 < n2) P.inner.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
+    P.inner.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
+    P.inner.push_back([=](const CG& i, const G& o) { fdScale<T>(i, inverse, o); });
+    P.inner.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
+    if (nb2 < n2) P.inner.push_back([](const CG& i, const G& o) { fdUnfold<2>(i, o); });
+  } else {
+    const Grid3 cp = cp_, dp = dp_;
+    const Table4 tri = tri_;
+    const Table la = lam_[0], lc = lam_[c_], ls = lam_[s_];
+    const Lines2 lines = lines_;
+    const Dense Vs = Vs_, VsT = VsT_;
+    const auto work = lineWork_;
+    const double iha = ih_[0], ihc = ih_[c_], ihs = ih_[s_], cut = cut_;
+    const int off = inner_.lo[c_];
+    if (s_ == 1)
+      P.inner.push_back([=](const CG& i, const G& o) {
+        fdTridiagonal<1, T>(i, o, cp, dp, tri, la, lc, iha, ihc, ihs, off);
+        fdDenseLines<1, T>(i, o, lines, Vs, VsT, ls, la, lc, iha, ihc, ihs, off, cut, work);
+      });
+    else
+      P.inner.push_back([=](const CG& i, const G& o) {
+        fdTridiagonal<2, T>(i, o, cp, dp, tri, la, lc, iha, ihc, ihs, off);
+        fdDenseLines<2, T>(i, o, lines, Vs, VsT, ls, la, lc, iha, ihc, ihs, off, cut, work);
+      });
+  }
+  P.all = P.fwd;
+  P.all.insert(P.all.end(), P.inner.begin(), P.inner.end());
+  P.all.insert(P.all.end(), P.back.begin(), P.back.end());
 }
 
 template <class T>
@@ -106,26 +135,26 @@ void FastDiagonalization::run(const Passes<T>& P, const Kokkos::View<const T*, K
   if (size_ == 1) {
     const CGrid3Of<T> in(r.data(), n_[0], n_[1], n_[2]);
     const Grid3Of<T> out(z.data(), n_[0], n_[1], n_[2]);
-    chain(P.all, in, out, P.z1, P.z2);
+    chain(P.all, in, out, P.o1, P.o2);
     return;
   }
   // Rows are this rank's block, i fastest: the block layout Redistribute expects.
   const Kokkos::View<T*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> rh(P.rowsH.data(),
                                                                                            P.rowsH.size());
   Kokkos::deep_copy(rh, r);
-  toZ_->forward(P.rowsH.data(), P.zh.data());
-  Kokkos::deep_copy(P.z1, P.zh);
-  chain(P.xy, CGrid3Of<T>(P.z1), P.z2, P.z1, P.z2);
-  Kokkos::deep_copy(P.zh, P.z2);
-  zToY_->forward(P.zh.data(), P.yh.data());
-  Kokkos::deep_copy(P.y1, P.yh);
-  chain(P.z, CGrid3Of<T>(P.y1), P.y2, P.y1, P.y2);
-  Kokkos::deep_copy(P.yh, P.y2);
-  zToY_->backward(P.yh.data(), P.zh.data());
-  Kokkos::deep_copy(P.z1, P.zh);
-  chain(P.yx, CGrid3Of<T>(P.z1), P.z2, P.z1, P.z2);
-  Kokkos::deep_copy(P.zh, P.z2);
-  toZ_->backward(P.zh.data(), P.rowsH.data());
+  toOuter_->forward(P.rowsH.data(), P.oh.data());
+  Kokkos::deep_copy(P.o1, P.oh);
+  chain(P.fwd, CGrid3Of<T>(P.o1), P.o2, P.o1, P.o2);
+  Kokkos::deep_copy(P.oh, P.o2);
+  toInner_->forward(P.oh.data(), P.ih.data());
+  Kokkos::deep_copy(P.i1, P.ih);
+  chain(P.inner, CGrid3Of<T>(P.i1), P.i2, P.i1, P.i2);
+  Kokkos::deep_copy(P.ih, P.i2);
+  toInner_->backward(P.ih.data(), P.oh.data());
+  Kokkos::deep_copy(P.o1, P.oh);
+  chain(P.back, CGrid3Of<T>(P.o1), P.o2, P.o1, P.o2);
+  Kokkos::deep_copy(P.oh, P.o2);
+  toOuter_->backward(P.oh.data(), P.rowsH.data());
   Kokkos::deep_copy(z, rh);
 }
 

@@ -43,9 +43,9 @@ int faceFree(const VecField& coef, const Grid& G, int e, int g) {
 // M = A1^T W^-1 A1 over those where the other two are (kM; a slip wall keeps them, a no-slip
 // wall neither), E = M + K/4 (diagonal: interior nodes are in both sets, and a face node
 // touches one cell), and V, lambda with K V = E V Lambda, V^T E V = I (LAPACK SYEV on
-// E^-1/2 K E^-1/2).
+// E^-1/2 K E^-1/2). tri (bounded axes): K's diagonal and upper diagonal, M's the same (n each).
 void axisFactors(int n, bool periodic, const bool kK[2], const bool kM[2], std::vector<double>& V,
-                 std::vector<double>& lam) {
+                 std::vector<double>& lam, std::vector<double>& tri) {
   std::vector<double> K(n * n, 0.0), Md(n * n, 0.0);
   const int nodes = periodic ? n : n + 1;
   for (int a = 0; a < nodes; ++a) {
@@ -77,6 +77,13 @@ void axisFactors(int n, bool periodic, const bool kK[2], const bool kM[2], std::
       }
       else if (std::abs(e) > 1e-12) throw std::logic_error("fast diagonalization: E is not diagonal");
     }
+  tri.assign(4 * n, 0.0); // M = E - K/4 with E diagonal: M's off-diagonals are -K's/4
+  for (int i = 0; i < n; ++i) {
+    tri[i] = K[i + n * i];
+    tri[n + i] = i + 1 < n ? K[i + n * (i + 1)] : 0.0;
+    tri[2 * n + i] = E[i] - 0.25 * K[i + n * i];
+    tri[3 * n + i] = i + 1 < n ? -0.25 * K[i + n * (i + 1)] : 0.0;
+  }
   std::vector<double> C(n * n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) C[i + n * j] = K[i + n * j] / std::sqrt(E[i] * E[j]);
@@ -100,34 +107,69 @@ void split(int m, int size, int p, int& lo, int& n) {
 }
 } // namespace
 
-FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm, bool single)
+FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm, bool single, bool tridiagonal)
     : g_(g), single_(single), comm_(comm) {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
   for (int d = 0; d < 3; ++d) n_[d] = g.n[d];
-  std::vector<Box> blocks(size_), zs(size_), ys(size_);
+  // The solve axis: y or z (lines vectorise along x), bounded (a periodic K is cyclic), the
+  // longer (its transforms cost the most); on a tie z, whose slabs are the layout's as before.
+  if (tridiagonal)
+    for (int e : {2, 1})
+      if (!g.periodic[e] && n_[e] >= 2 && (s_ < 0 || n_[e] > n_[s_])) s_ = e;
+  c_ = s_ == 1 ? 2 : 1;
+  const int outerSplit = s_ == 1 ? 1 : 2, innerSplit = c_; // the inner slab keeps whole s lines
+  std::vector<Box> blocks(size_), outer(size_), inner(size_);
   const int mine[6] = {g.c0[0], g.c0[1], g.c0[2], g.ln[0], g.ln[1], g.ln[2]};
   std::vector<int> all(6 * size_);
   MPI_Allgather(mine, 6, MPI_INT, all.data(), 6, MPI_INT, comm_);
   for (int p = 0; p < size_; ++p) {
     blocks[p].lo = {all[6 * p], all[6 * p + 1], all[6 * p + 2]};
     blocks[p].n = {all[6 * p + 3], all[6 * p + 4], all[6 * p + 5]};
-    int lo, n;
-    split(n_[2], size_, p, lo, n);
-    zs[p].lo = {0, 0, lo};
-    zs[p].n = {n_[0], n_[1], n};
-    split(n_[1], size_, p, lo, n);
-    ys[p].lo = {0, lo, 0};
-    ys[p].n = {n_[0], n, n_[2]};
+    for (auto [boxes, e] : {std::pair<std::vector<Box>*, int>{&outer, outerSplit}, {&inner, innerSplit}}) {
+      int lo, n;
+      split(n_[e], size_, p, lo, n);
+      Box& b = (*boxes)[p];
+      b.lo = {0, 0, 0};
+      b.n = {n_[0], n_[1], n_[2]};
+      b.lo[e] = lo;
+      b.n[e] = n;
+    }
   }
-  zs_ = zs[rank_];
-  ys_ = ys[rank_];
+  outer_ = outer[rank_];
+  inner_ = inner[rank_];
   if (size_ > 1) {
-    toZ_ = std::make_unique<Redistribute>(comm_, blocks, zs);
-    zToY_ = std::make_unique<Redistribute>(comm_, zs, ys);
+    toOuter_ = std::make_unique<Redistribute>(comm_, blocks, outer);
+    toInner_ = std::make_unique<Redistribute>(comm_, outer, inner);
+  }
+  if (s_ >= 0) {
+    cp_ = Grid3("fd_tri_c", inner_.n[0], inner_.n[1], inner_.n[2]);
+    dp_ = Grid3("fd_tri_d", inner_.n[0], inner_.n[1], inner_.n[2]);
   }
   if (single_) allocate(f_);
   else allocate(d_);
+}
+
+void FastDiagonalization::findSingularLines(const Kokkos::View<double* [3], MemSpace>::HostMirror& lam, double cut) {
+  // Lines (i, o) of the inner slab whose block T = sigma M_s + tau K_s has an eigenvalue at
+  // or below the cut (fd_tridiagonal.hpp): A0's null modes, few (the constant and
+  // checkerboard modes of the transformed axes).
+  std::vector<int> found;
+  const int no = inner_.n[c_], off = inner_.lo[c_];
+  for (int o = 0; o < no; ++o)
+    for (int i = 0; i < n_[0]; ++i) {
+      double sigma, tau;
+      fd_detail::lineCoef(lam(i, 0), lam(o + off, c_), ih_[0], ih_[c_], ih_[s_], sigma, tau);
+      double low = 1e300;
+      for (int b = 0; b < n_[s_]; ++b) low = std::min(low, sigma * (1 - 0.25 * lam(b, s_)) + tau * lam(b, s_));
+      if (low <= cut) found.insert(found.end(), {i, o});
+    }
+  const int nl = (int)found.size() / 2;
+  lines_ = Lines2("fd_singular_lines", nl);
+  auto h = Kokkos::create_mirror_view(lines_);
+  for (int l = 0; l < nl; ++l) h(l, 0) = found[2 * l], h(l, 1) = found[2 * l + 1];
+  Kokkos::deep_copy(lines_, h);
+  lineWork_ = Kokkos::View<double**, Kokkos::LayoutRight, MemSpace>("fd_line_work", nl, 3 * n_[s_]);
 }
 
 void FastDiagonalization::setup(const VecField& coef) {
@@ -151,14 +193,21 @@ void FastDiagonalization::setup(const VecField& coef) {
   std::vector<double> l[3];
   for (int e = 0; e < 3; ++e) {
     const int n = n_[e];
-    std::vector<double> V;
-    axisFactors(n, g.periodic[e], keepK_[e], keepM_[e], V, l[e]);
+    std::vector<double> V, tri;
+    axisFactors(n, g.periodic[e], keepK_[e], keepM_[e], V, l[e], tri);
+    if (e == s_) { // the solve axis: its tridiagonal factors; not folded (its V serves the singular lines)
+      tri_ = Table4("fd_tri", n, 4);
+      auto th = Kokkos::create_mirror_view(tri_);
+      for (int c = 0; c < 4; ++c)
+        for (int q = 0; q < n; ++q) th(q, c) = tri[c * n + q];
+      Kokkos::deep_copy(tri_, th);
+    }
     // A mirror-symmetric axis (both faces of one kind) has even and odd eigenvectors: fold
     // it (fdFold) and keep V block diagonal, even modes first, to halve the transform.
     std::vector<int> order(n);
     for (int a = 0; a < n; ++a) order[a] = a;
     nb_[e] = n;
-    if (!g.periodic[e] && keepK_[e][0] == keepK_[e][1] && keepM_[e][0] == keepM_[e][1] && n > 1) {
+    if (e != s_ && !g.periodic[e] && keepK_[e][0] == keepK_[e][1] && keepM_[e][0] == keepM_[e][1] && n > 1) {
       std::vector<int> even, odd;
       bool clean = true;
       for (int a = 0; a < n && clean; ++a) {
@@ -198,6 +247,10 @@ void FastDiagonalization::setup(const VecField& coef) {
     for (int c = 0; c < n; ++c) lo[c] = l[e][order[c]];
     l[e] = lo;
     for (int a = 0; a < n; ++a) lamH(a, e) = l[e][a];
+    lam_[e] = Table("fd_lambda_axis", n);
+    auto th = Kokkos::create_mirror_view(lam_[e]);
+    for (int a = 0; a < n; ++a) th(a) = l[e][a];
+    Kokkos::deep_copy(lam_[e], th);
   }
   Kokkos::deep_copy(lam, lamH);
   // Null modes of A0 (eigenvalue 0 up to round-off) get 0: A's own null space is removed
@@ -211,8 +264,21 @@ void FastDiagonalization::setup(const VecField& coef) {
         const double m0 = 1 - 0.25 * l0, m1 = 1 - 0.25 * l1, m2 = 1 - 0.25 * l2;
         dmax = std::max(dmax, ih[0] * l0 * m1 * m2 + ih[1] * m0 * l1 * m2 + ih[2] * m0 * m1 * l2);
       }
-  Grid3 inv("fd_inverse_eigenvalues", ys_.n[0], ys_.n[1], ys_.n[2]);
-  fdInverseEigenvalues(inv, lam, ih[0], ih[1], ih[2], ys_.lo[1], 1e-10 * dmax);
+  for (int d = 0; d < 3; ++d) ih_[d] = ih[d];
+  cut_ = 1e-10 * dmax;
+  Grid3 inv;
+  if (s_ < 0) {
+    inv = Grid3("fd_inverse_eigenvalues", inner_.n[0], inner_.n[1], inner_.n[2]);
+    fdInverseEigenvalues(inv, lam, ih[0], ih[1], ih[2], inner_.lo[1], cut_);
+  } else {
+    Vs_ = V_[s_];
+    VsT_ = Dense("fd_VsT", n_[s_], n_[s_]);
+    const Dense V = Vs_, VT = VsT_;
+    Kokkos::parallel_for(
+        "fd_transpose_Vs", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {n_[s_], n_[s_]}),
+        KOKKOS_LAMBDA(int q, int b) { VT(b, q) = V(q, b); });
+    findSingularLines(lamH, cut_);
+  }
   // The passes of one application (they depend on which axes are folded): built here, once.
   if (single_) build(f_, inv);
   else build(d_, inv);

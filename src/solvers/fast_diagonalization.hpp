@@ -14,9 +14,15 @@
 // taken as free); obstacles and density jumps are left to CG. A face is sampled away from
 // its edges: a wall with an outflow patch reads as free, and then A0 is a preconditioner only.
 //
-// MPI: the transforms need whole grid lines. The x and y transforms run on z-slabs (each
-// rank a range of k with whole x-y planes), the z transform and the scaling on y-slabs;
-// three box-to-box moves (src/core/redistribute.hpp) each way: blocks -> z-slabs -> y-slabs.
+// One axis s (y or z, bounded, the longer) is not transformed: per line along it A0 is
+// tridiagonal in the two other axes' modes, solved directly (kernels/fd_tridiagonal.hpp):
+// 2 n_s flops a cell less each way. With both y and z periodic, all three are transformed.
+//
+// MPI: the transforms and solves need whole grid lines. The two transformed axes run on an
+// outer slab (each rank a range of s with whole planes of the other two), the solve along s
+// (or, with no solve axis, the z transform and the scaling) on an inner slab (a range of the
+// other transformed axis); box-to-box moves (src/core/redistribute.hpp) each way: blocks ->
+// outer -> inner. s = z: outer z-slabs, inner y-slabs; s = y: outer y-slabs, inner z-slabs.
 #include <mpi.h>
 
 #include <functional>
@@ -27,6 +33,7 @@
 #include "core/grid.hpp"
 #include "core/redistribute.hpp"
 #include "kernels/fast_diag.hpp"
+#include "kernels/fd_tridiagonal.hpp"
 #include "kernels/poisson_rows.hpp"
 
 namespace voigt {
@@ -39,7 +46,8 @@ using ConstRowVector = Kokkos::View<const double*, Kokkos::LayoutLeft, MemSpace>
 // tolerances (perf/README.md, "The exact projection at a tolerance").
 class FastDiagonalization {
  public:
-  FastDiagonalization(const Grid& g, MPI_Comm comm, bool single = false);
+  // tridiagonal false: transform all three axes (the form before 2026-12-05; tests compare).
+  FastDiagonalization(const Grid& g, MPI_Comm comm, bool single = false, bool tridiagonal = true);
   // Reads which faces keep their node rows from coef (collective); builds the 1-D
   // eigenvectors and the eigenvalue table. Cheap (1-D eigenproblems): call when the
   // zero pattern of coef changes.
@@ -47,16 +55,20 @@ class FastDiagonalization {
   // z = A0^+ r on this rank's rows (r: owned rows, i fastest). Collective.
   void apply(const ConstRowVector& r, const RowVector& z) const;
   bool single() const { return single_; }
+  int solveAxis() const { return s_; } // the axis solved by lines (1 or 2), -1: none
+  int singularLines() const { return (int)lines_.extent(0); } // on this rank (after setup)
 
  private:
   template <class T>
   struct Passes { // one precision's passes and work arrays
     using Op = std::function<void(const CGrid3Of<T>&, const Grid3Of<T>&)>;
-    std::vector<Op> xy, z, yx, all; // z-slab: x, y forward; y-slab: z, scale, z back; z-slab: y, x back
+    // outer slab: the two transforms forward; inner slab: the solve along s (or the third
+    // transform, the scaling and its inverse); outer slab: the two transforms back.
+    std::vector<Op> fwd, inner, back, all;
     DenseOf<T> V[3];
-    Grid3Of<T> inv;                 // 1/eigenvalue on this rank's y-slab of modes
-    Grid3Of<T> z1, z2, y1, y2;      // z-slab and y-slab work arrays (1 rank: the whole grid, z == y)
-    typename Grid3Of<T>::HostMirror zh, yh;
+    Grid3Of<T> inv;                 // no solve axis: 1/eigenvalue on this rank's inner slab of modes
+    Grid3Of<T> o1, o2, i1, i2;      // outer and inner work arrays (1 rank: the whole grid, o == i)
+    typename Grid3Of<T>::HostMirror oh, ih;
     Kokkos::View<T*, Kokkos::LayoutLeft, MemSpace> r, x; // rows in T (float only)
     mutable std::vector<T> rowsH;
   };
@@ -67,16 +79,28 @@ class FastDiagonalization {
   template <class T>
   void run(const Passes<T>& P, const Kokkos::View<const T*, Kokkos::LayoutLeft, MemSpace>& r,
            const Kokkos::View<T*, Kokkos::LayoutLeft, MemSpace>& z) const;
+  void findSingularLines(const Kokkos::View<double* [3], MemSpace>::HostMirror& lam, double cut);
   Grid g_;                 // this rank's box (a copy; the communicator is comm_)
   int n_[3];
   bool single_;
+  int s_ = -1;             // the solve axis, -1: none (all three transformed)
+  int c_ = 1;              // the transformed axis other than x (2 when s_ = 1, else 1)
   bool keepK_[3][2] = {}, keepM_[3][2] = {}; // face node rows kept: normal / tangential components
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
-  Box zs_, ys_;            // this rank's z-slab and y-slab
-  std::unique_ptr<Redistribute> toZ_, zToY_; // blocks -> z-slabs, z-slabs -> y-slabs
+  Box outer_, inner_;      // this rank's outer and inner slab
+  std::unique_ptr<Redistribute> toOuter_, toInner_; // blocks -> outer slabs -> inner slabs
   Dense V_[3];             // per axis: eigenvectors (block diagonal after folding), double
   int nb_[3] = {0, 0, 0};  // first block of V_ (n: not folded)
+  // The solve (s_ >= 0): eigenvalues per axis, K_s and M_s's diagonals, the singular lines
+  // (inner-slab indices) with the unfolded eigenvectors of s, and double work arrays.
+  Table lam_[3];
+  Table4 tri_;
+  Dense Vs_, VsT_;
+  Lines2 lines_;
+  Grid3 cp_, dp_;
+  Kokkos::View<double**, Kokkos::LayoutRight, MemSpace> lineWork_;
+  double ih_[3] = {0, 0, 0}, cut_ = 0;
   Passes<double> d_;
   Passes<float> f_;
 };

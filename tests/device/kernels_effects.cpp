@@ -8,6 +8,7 @@
 
 #include "kernels/elastic.hpp"
 #include "kernels/fast_diag.hpp"
+#include "kernels/fd_tridiagonal.hpp"
 #include "kernels/initial_flow.hpp"
 #include "kernels/momentum.hpp"
 #include "kernels/poisson_apply.hpp"
@@ -311,6 +312,67 @@ void projectionExtras(const Grid& g, Fields& f) {
   put("fdFloatPasses", diff <= 1e-5 * big ? 1.0 : 0.0);
 }
 
+// The solve-axis passes (kernels/fd_tridiagonal.hpp) on this rank's cells as a slab: a 1-D
+// Neumann K (2 on the interior diagonal, 1 at the ends, -1 off it), M = I - K/4, eigenvalue
+// tables of the transformed axes from 2 - 2 cos; the dense form on every fifth line.
+void fdSolveAxis(const Grid& g, Fields& f) {
+  const int n0 = g.ln[0], n1 = g.ln[1], n2 = g.ln[2];
+  const Range3 cells = cellRange(g);
+  Grid3 a("a", n0, n1, n2), out("out", n0, n1, n2), cp("cp", n0, n1, n2), dp("dp", n0, n1, n2);
+  Kokkos::deep_copy(a, Kokkos::subview(f.p, std::make_pair(cells.b[0], cells.e[0]),
+                                       std::make_pair(cells.b[1], cells.e[1]), std::make_pair(cells.b[2], cells.e[2])));
+  auto table = [](int n) {
+    Table t("lam", n);
+    auto h = Kokkos::create_mirror_view(t);
+    for (int q = 0; q < n; ++q) h(q) = 2 - 2 * std::cos(3.14159265358979 * q / n);
+    Kokkos::deep_copy(t, h);
+    return t;
+  };
+  auto sumSq = [](const Grid3& v) {
+    double s = 0;
+    const double* p = v.data();
+    Kokkos::parallel_reduce(
+        "check_sumsq", Kokkos::RangePolicy<ExecSpace>(0, (int)v.size()),
+        KOKKOS_LAMBDA(int r, double& acc) { acc += p[r] * p[r]; }, s);
+    return s;
+  };
+  for (int axis : {1, 2}) {
+    const int m = axis == 1 ? n1 : n2, no = axis == 1 ? n2 : n1, nc = axis == 1 ? n2 : n1;
+    Table4 tri("tri", m, 4);
+    auto th = Kokkos::create_mirror_view(tri);
+    for (int q = 0; q < m; ++q) {
+      th(q, 0) = (q == 0 || q == m - 1) ? 1.0 : 2.0;
+      th(q, 1) = q + 1 < m ? -1.0 : 0.0;
+      th(q, 2) = 1.0 - 0.25 * th(q, 0);
+      th(q, 3) = -0.25 * th(q, 1);
+    }
+    Kokkos::deep_copy(tri, th);
+    const Table la = table(n0), lc = table(nc), ls = table(m);
+    const int nl = (n0 * no + 4) / 5;
+    Lines2 lines("lines", nl);
+    Kokkos::parallel_for(
+        "check_lines", Kokkos::RangePolicy<ExecSpace>(0, nl),
+        KOKKOS_LAMBDA(int l) { lines(l, 0) = (5 * l) % n0, lines(l, 1) = (5 * l) / n0; });
+    Kokkos::View<double**, Kokkos::LayoutRight, MemSpace> work("work", nl, 3 * m);
+    const Dense V = denseOf(m);
+    Dense VT("VT", m, m);
+    Kokkos::parallel_for(
+        "check_VT", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {m, m}),
+        KOKKOS_LAMBDA(int q, int b) { VT(b, q) = V(q, b); });
+    if (axis == 1) {
+      fdTridiagonal<1, double>(a, out, cp, dp, tri, la, lc, 1.0, 1.3, 0.8, 0);
+      put("fdTridiagonal<1>", sumSq(out));
+      fdDenseLines<1, double>(a, out, lines, V, VT, ls, la, lc, 1.0, 1.3, 0.8, 0, 1e-12, work);
+      put("fdDenseLines<1>", sumSq(out));
+    } else {
+      fdTridiagonal<2, double>(a, out, cp, dp, tri, la, lc, 1.0, 1.3, 0.8, 0);
+      put("fdTridiagonal<2>", sumSq(out));
+      fdDenseLines<2, double>(a, out, lines, V, VT, ls, la, lc, 1.0, 1.3, 0.8, 0, 1e-12, work);
+      put("fdDenseLines<2>", sumSq(out));
+    }
+  }
+}
+
 void effects(const Grid& g, Fields& f) {
   solidBody(g, f);
   momentum(g, f);
@@ -318,6 +380,7 @@ void effects(const Grid& g, Fields& f) {
   diagnostics(g, f);
   solverRowsAndShapes(g, f);
   projectionExtras(g, f);
+  fdSolveAxis(g, f);
 }
 
 } // namespace check
