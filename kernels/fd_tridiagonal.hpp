@@ -168,4 +168,13 @@ inline void fdDenseLines(const CGrid3In<T>& in, const Grid3Of<T>& out, const Lin
   Kokkos::fence();
 }
 
+// VT(b, q) = V(q, b) (fdDenseLines reads both).
+inline void fdTransposeDense(const Dense& V, const Dense& VT) {
+  const int m = (int)V.extent(0), n = (int)V.extent(1);
+  Kokkos::parallel_for(
+      "fd_transpose_dense", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {m, n}),
+      KOKKOS_LAMBDA(int q, int b) { VT(b, q) = V(q, b); });
+  Kokkos::fence();
+}
+
 } // namespace voigt

@@ -273,10 +273,7 @@ void FastDiagonalization::setup(const VecField& coef) {
   } else {
     Vs_ = V_[s_];
     VsT_ = Dense("fd_VsT", n_[s_], n_[s_]);
-    const Dense V = Vs_, VT = VsT_;
-    Kokkos::parallel_for(
-        "fd_transpose_Vs", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {n_[s_], n_[s_]}),
-        KOKKOS_LAMBDA(int q, int b) { VT(b, q) = V(q, b); });
+    fdTransposeDense(Vs_, VsT_);
     findSingularLines(lamH, cut_);
   }
   // The passes of one application (they depend on which axes are folded): built here, once.

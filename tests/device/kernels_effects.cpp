@@ -356,9 +356,7 @@ void fdSolveAxis(const Grid& g, Fields& f) {
     Kokkos::View<double**, Kokkos::LayoutRight, MemSpace> work("work", nl, 3 * m);
     const Dense V = denseOf(m);
     Dense VT("VT", m, m);
-    Kokkos::parallel_for(
-        "check_VT", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {m, m}),
-        KOKKOS_LAMBDA(int q, int b) { VT(b, q) = V(q, b); });
+    fdTransposeDense(V, VT);
     if (axis == 1) {
       fdTridiagonal<1, double>(a, out, cp, dp, tri, la, lc, 1.0, 1.3, 0.8, 0);
       put("fdTridiagonal<1>", sumSq(out));
