@@ -208,6 +208,24 @@ def recorded(ledger, rid):
     return "" if row is None else row.get("state", "")
 
 
+def rows_by_id(path):
+    """A CSV keyed by run id (a ledger or a results.csv); {} when the file is missing."""
+    if not os.path.exists(path):
+        return {}
+    with open(path, newline="") as f:
+        return {r["run_id"]: r for r in csv.DictReader(f)}
+
+
+def unfinished(row):
+    """A ledger row of a run that has not finished, in words: how far it got and what
+    finishing would cost (the cases' table.py quote it)."""
+    if not row.get("t_reached"):
+        return "*not finished*: %s, no checkpoint yet" % row["state"]
+    return "*not finished*: %s at t = %s s (%s steps, %s s)%s" % (
+        row["state"], row["t_reached"], row["steps"], row["wall_s"],
+        "; to finish ~%s s" % row["to_finish_s"] if row.get("to_finish_s") else "")
+
+
 def table(ledger, ids):
     with open(ledger, newline="") as f:
         rows = [r for r in csv.DictReader(f) if not ids or r.get("run_id") in ids]

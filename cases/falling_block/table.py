@@ -11,21 +11,17 @@ table replaces what lies between the README's markers
 <!-- table.py: begin --> and <!-- table.py: end -->; otherwise it is printed.
 """
 import argparse
-import csv
 import os
 import re
+import sys
 
 HERE = os.path.dirname(os.path.realpath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))  # cases/runs.py
+import runs  # noqa: E402
 MODULI = (1000, 2000, 5000)
 MODELS = ("extend", "integrate")
 BEGIN, END = "<!-- table.py: begin -->", "<!-- table.py: end -->"
 
-
-def _rows(path):
-    if not os.path.exists(path):
-        return {}
-    with open(path) as f:
-        return {r["run_id"]: r for r in csv.DictReader(f)}
 
 
 def _v(r, key, unit=""):
@@ -66,14 +62,6 @@ QUANTITIES = [
 ]
 
 
-def _unfinished(g):
-    """A ledger row of a run that has not finished: how far it got, what finishing would cost."""
-    if not g.get("t_reached"):
-        return "*not finished*: %s, no checkpoint yet" % g["state"]
-    return "*not finished*: %s at t = %s s (%s steps, %s s)%s" % (
-        g["state"], g["t_reached"], g["steps"], g["wall_s"],
-        "; to finish ~%s s" % g["to_finish_s"] if g.get("to_finish_s") else "")
-
 
 def table(results, ledger, tag, grid):
     ids = ["mu%d_%s%s_%d" % (mu, model, tag, grid) for model in MODELS for mu in MODULI]
@@ -87,7 +75,7 @@ def table(results, ledger, tag, grid):
             if r is not None:
                 cells.append(say(r))
             elif i in ledger:
-                cells.append(_unfinished(ledger[i]) if name == QUANTITIES[0][0] else "")
+                cells.append(runs.unfinished(ledger[i]) if name == QUANTITIES[0][0] else "")
             else:
                 cells.append("*not run*" if name == QUANTITIES[0][0] else "")
         lines.append("| %s | %s | %s |" % (name, paper, " | ".join(cells)))
@@ -104,7 +92,7 @@ def main():
     ap.add_argument("--ledger", default=os.path.join(HERE, "runs.csv"))
     ap.add_argument("--readme", help="replace the table between the markers of this file")
     a = ap.parse_args()
-    text = table(_rows(a.results), _rows(a.ledger), a.tag, a.grid)
+    text = table(runs.rows_by_id(a.results), runs.rows_by_id(a.ledger), a.tag, a.grid)
     if not a.readme:
         print(text)
         return

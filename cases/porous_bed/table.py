@@ -12,19 +12,15 @@ the table replaces what lies between the markers <!-- table.py MODEL TAG GRID: b
 <!-- table.py MODEL TAG GRID: end --> of that file; otherwise it is printed.
 """
 import argparse
-import csv
 import json
 import os
+import sys
 
 HERE = os.path.dirname(os.path.realpath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))  # cases/runs.py
+import runs  # noqa: E402
 MODULI = (100, 250, 500, 750, 1000)
 
-
-def _rows(path):
-    if not os.path.exists(path):
-        return {}
-    with open(path) as f:
-        return {r["run_id"]: r for r in csv.DictReader(f)}
 
 
 def ergun(e, rho=1.0, mu=1e-5, u=0.1, d=0.025):
@@ -47,13 +43,6 @@ def fit(xs, ys):
     res = sum((y - slope * x - icpt) ** 2 for x, y in zip(xs, ys))
     return slope, icpt, (1 - res / ss) if ss > 0 else 1.0
 
-
-def _unfinished(g):
-    if not g.get("t_reached"):
-        return "*not finished*: %s, no checkpoint yet" % g["state"]
-    return "*not finished*: %s at t = %s s (%s steps, %s s)%s" % (
-        g["state"], g["t_reached"], g["steps"], g["wall_s"],
-        "; to finish ~%s s" % g["to_finish_s"] if g.get("to_finish_s") else "")
 
 
 QUANTITIES = [  # (name, paper, results.csv column, unit)
@@ -79,7 +68,7 @@ def table(results, ledger, model, tag, grid, packing):
                 v = done[mu].get(key) or ""
                 cells.append(v + unit if v else "-")
             elif n == 0:
-                cells.append(_unfinished(ledger[i]) if i in ledger else "*not run*")
+                cells.append(runs.unfinished(ledger[i]) if i in ledger else "*not run*")
             else:
                 cells.append("")
         lines.append("| %s | %s | %s |" % (name, paper, " | ".join(cells)))
@@ -119,7 +108,7 @@ def main():
     if os.path.exists(a.packing):
         with open(a.packing) as f:
             packing = json.load(f)["voidage_written"]   # as plots.py: the bed the scene holds
-    text = table(_rows(a.results), _rows(a.ledger), a.model, a.tag, a.grid, packing)
+    text = table(runs.rows_by_id(a.results), runs.rows_by_id(a.ledger), a.model, a.tag, a.grid, packing)
     if not a.readme:
         print(text)
         return
