@@ -109,7 +109,7 @@ void FastDiagonalization::build(Passes<T>& P, const Grid3& inv) const {
     const Table4 tri = tri_;
     const Table la = lam_[0], lc = lam_[c_], ls = lam_[s_];
     const Lines2 lines = lines_;
-    const Dense Vs = Vs_, VsT = VsT_;
+    const Dense Vs = V_[s_], VsT = VsT_; // the solve axis is not folded: V_[s_] is its whole eigenvector matrix
     const auto work = lineWork_;
     const double iha = ih_[0], ihc = ih_[c_], ihs = ih_[s_], cut = cut_;
     const int off = inner_.lo[c_];

@@ -271,9 +271,8 @@ void FastDiagonalization::setup(const VecField& coef) {
     inv = Grid3("fd_inverse_eigenvalues", inner_.n[0], inner_.n[1], inner_.n[2]);
     fdInverseEigenvalues(inv, lam, ih[0], ih[1], ih[2], inner_.lo[1], cut_);
   } else {
-    Vs_ = V_[s_];
     VsT_ = Dense("fd_VsT", n_[s_], n_[s_]);
-    fdTransposeDense(Vs_, VsT_);
+    fdTransposeDense(V_[s_], VsT_);
     findSingularLines(lamH, cut_);
   }
   // The passes of one application (they depend on which axes are folded): built here, once.

@@ -96,7 +96,7 @@ class FastDiagonalization {
   // (inner-slab indices) with the unfolded eigenvectors of s, and double work arrays.
   Table lam_[3];
   Table4 tri_;
-  Dense Vs_, VsT_;
+  Dense VsT_;             // V_[s_] transposed (the singular lines read both)
   Lines2 lines_;
   Grid3 cp_, dp_;
   Kokkos::View<double**, Kokkos::LayoutRight, MemSpace> lineWork_;
