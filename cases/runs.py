@@ -11,6 +11,7 @@ each long run got is known even when the machine that ran it is gone. Used by ca
     runs.py progress LEDGER OUT                      (each "running" row: step and t of its last
                                                       checkpoint in OUT/<run id>, what a resume continues from)
 
+revisions: the builds (git describe) that ran its segments, from summary.json.
 States: running, wall_limit (voigt exit 75), stopped (SIGINT/SIGTERM), finished, failed.
 to_finish_s: for a run that stopped before its end, the wall seconds its last segment's pace
 (seconds per step, mean dt of its last 100 steps) needs to reach the end time (issue 22 item 5).
@@ -26,7 +27,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..
 from voigt_post import series  # noqa: E402
 
 COLUMNS = ["run_id", "modulus", "model", "grid", "ranks", "t_reached", "steps", "wall_s", "state", "to_finish_s",
-           "updated_utc"]
+           "updated_utc", "revisions"]
 EXIT_STATE = {0: "finished", 75: "wall_limit", 130: "stopped", 143: "stopped"}
 
 
@@ -157,6 +158,17 @@ def to_finish(path, s):
     return max(0.0, t_end - s["simulated_time"]) / (sum(dts) / len(dts)) * wall / n
 
 
+def revisions(s):
+    """The builds that ran the run's segments, in order, repeats dropped ("?" for segments
+    from before summary.json recorded them, "" if it records none)."""
+    out = []
+    for seg in s.get("segment_history", []):
+        r = seg.get("revision") or "?"
+        if not out or out[-1] != r:
+            out.append(r)
+    return " ".join(out)
+
+
 def end(ledger, rid, path, code, since):
     values = {"state": EXIT_STATE.get(code, "failed")}
     s = summary(path)
@@ -170,6 +182,7 @@ def end(ledger, rid, path, code, since):
         if left is None:
             left = to_finish(path, s)
         values["to_finish_s"] = "" if left in (None, "") else "%.0f" % left
+        values["revisions"] = revisions(s)
     update(ledger, rid, values)
 
 

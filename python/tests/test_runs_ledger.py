@@ -96,6 +96,19 @@ class Ledger(unittest.TestCase):
         self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))[("state")], "failed")
         self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "")
 
+    def test_end_records_the_builds_of_each_segment(self):
+        # summary.json's segment_history (Voigt since 2026-12-05): the ledger names the builds
+        # in the order they ran, a repeat once; "?" for segments from before the record.
+        d = os.path.join(self.dir.name, "r")
+        os.makedirs(d)
+        hist = [{"segments": 2, "revision": None}, {"revision": "aaa"}, {"revision": "aaa"}, {"revision": "bbb-dirty"}]
+        for h, want in ((hist, "? aaa bbb-dirty"), (hist[1:3], "aaa"), ([], "")):
+            with open(os.path.join(d, "summary.json"), "w") as f:
+                json.dump({"state": "finished", "simulated_time": 1, "steps": 5, "wall_seconds": 1.0,
+                           "segment_history": h}, f)
+            runs.end(self.ledger, "r", d, 0, 0)
+            self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["revisions"], want)
+
     def test_run_id_says_which_projection(self):
         scene = os.path.join(self.dir.name, "s.yaml")
         for body, sets, tag in [("projection:\n  operator: approximate\n  tolerance: 1e-6\n", [], ""),

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/build_info.hpp"
 #include "core/index_space.hpp"
 #include "io/checkpoint.hpp"
 #include "io/fields_out.hpp"
@@ -111,6 +112,7 @@ nlohmann::json Simulation::checkpointMeta() const {
   j["counters"] = st_.counters;
   j["wall_seconds_total"] = wallBefore_ + (runStart_ < 0 ? 0.0 : MPI_Wtime() - runStart_); // NaN -> null
   j["run_segments"] = segments_;
+  j["segment_history"] = segmentRecord();
   j["next_output"] = nextOutput_;
   j["output_index"] = outputIndex_;
   j["dt_reasons"] = dtReasons_;
@@ -139,6 +141,21 @@ nlohmann::json Simulation::checkpointMeta() const {
   return j;
 }
 
+// The segments so far, this one last: which binary ran which steps (a long run may
+// continue on a newer build; its results differ from one binary's by round-off at most
+// when the revisions only sped it up, and the record says where to look if not).
+nlohmann::json Simulation::segmentRecord() const {
+  nlohmann::json h = segmentHistory_;
+  h.push_back({{"segment", segments_},
+               {"revision", buildRevision()},
+               {"ranks", st_.grid.size},
+               {"first_step", segmentFirstStep_},
+               {"last_step", st_.step},
+               {"wall_seconds", runStart_ < 0 ? 0.0 : MPI_Wtime() - runStart_},
+               {"started_utc", segmentStartUtc_}});
+  return h;
+}
+
 nlohmann::json Simulation::restore(const std::string& file) {
   initialize();
   const nlohmann::json m = readCheckpoint(st_.grid, st_.fields, file);
@@ -153,6 +170,9 @@ nlohmann::json Simulation::restore(const std::string& file) {
   for (auto& [k, v] : m.at("counters").items()) st_.counters[k] = num(v);
   wallBefore_ = num(m.value("wall_seconds_total", nlohmann::json()));
   segments_ = m.value("run_segments", 1L) + 1;
+  segmentHistory_ = m.value("segment_history", nlohmann::json::array());
+  if (segmentHistory_.empty()) // a checkpoint from before the record: its segments, binaries unknown
+    segmentHistory_.push_back({{"segments", segments_ - 1}, {"revision", nullptr}, {"last_step", st_.step}});
   compareScene(m);
   nextOutput_ = m.at("next_output").get<double>();
   outputIndex_ = m.at("output_index").get<int>();

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -26,6 +27,15 @@ namespace voigt {
 namespace fs = std::filesystem;
 
 namespace {
+std::string utcNow() { // ISO 8601, as the case ledgers write it
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
 // SIGINT/SIGTERM/SIGUSR1: the handler only records the signal; the time loop acts
 // on it between steps, collectively (an MPI_MAX over ranks), so a signal that
 // reaches one rank stops them all at the same step. SIGUSR1 is a batch system's
@@ -114,6 +124,8 @@ RunResult Simulation::run() {
   const double w0 = MPI_Wtime();
   double lastProgress = w0;
   runStart_ = w0;
+  segmentFirstStep_ = st_.step;
+  segmentStartUtc_ = utcNow();
   lastCheckpointWall_ = w0;
   WallLimit wall;
   if (opt_.wallLimit > 0) {

@@ -12,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/build_info.hpp"
 #include "core/field_names.hpp"
 #include "core/index_space.hpp"
 #include "io/checkpoint.hpp"
@@ -192,6 +193,8 @@ nlohmann::json Simulation::summary(const RunResult& r) const {
   j["steps_this_run"] = r.stepsThisRun;
   j["wall_seconds_total"] = r.wallSecondsTotal;  // NaN (null): restarted from an older checkpoint
   j["run_segments"] = r.segments;
+  j["revision"] = buildRevision();
+  j["segment_history"] = segmentRecord();
   // null: a fresh run, or a checkpoint that carries no scene to compare with
   j["restart_scene_changes"] = restartSceneCompared_ ? nlohmann::json(restartSceneChanges_) : nlohmann::json();
   j["cell_steps_per_second"] = r.cellStepsPerSecond;

@@ -155,6 +155,12 @@ class Simulation {
   double wallBefore_ = 0;
   double runStart_ = -1;  // MPI_Wtime when run() started its loop
   long segments_ = 1;
+  // Provenance per segment: the earlier ones (from the checkpoint) and this one's start;
+  // segmentRecord() adds this one (binary revision, ranks, steps, wall time).
+  nlohmann::json segmentHistory_ = nlohmann::json::array();
+  long segmentFirstStep_ = 0;
+  std::string segmentStartUtc_;
+  nlohmann::json segmentRecord() const;
   std::vector<std::string> restartSceneChanges_; // top-level scene keys unlike the checkpoint's
   bool restartSceneCompared_ = false;            // false: fresh run, or checkpoint without a scene
 };

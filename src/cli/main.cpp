@@ -14,6 +14,7 @@
 #include "app/estimate.hpp"
 #include "app/presets_estimate.hpp"
 #include "app/simulation.hpp"
+#include "core/build_info.hpp"
 #include "scene/load.hpp"
 #include "scene/reader.hpp"
 
@@ -62,11 +63,11 @@ int info() {
   if (rankOf() == 0) {
     int size = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
-    std::cout << "voigt " << VOIGT_VERSION << "\n";
+    std::cout << "voigt " << VOIGT_VERSION << " (" << buildRevision() << ")\n";
     std::cout << "kokkos execution space: " << Kokkos::DefaultExecutionSpace::name()
               << " (concurrency " << Kokkos::DefaultExecutionSpace().concurrency() << ")\n";
     std::cout << "mpi ranks: " << size << "\n";
-    std::cout << "instruction set: " << VOIGT_BUILD_ISA << " (CMake VOIGT_ARCH)\n";
+    std::cout << "instruction set: " << buildIsa() << " (CMake VOIGT_ARCH)\n";
     std::cout << "effects:";
     for (auto& e : effectRegistry()) std::cout << " " << e.name;
     std::cout << "\n";
@@ -172,6 +173,7 @@ int main(int argc, char** argv) {
     Kokkos::ScopeGuard kokkos(kargc, kargv.data());
     CLI::App app{"Voigt: fluids and elastic solids on one Eulerian grid"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("voigt ") + VOIGT_VERSION + " (" + buildRevision() + ")");
     std::string scenePath, outDir;
     std::vector<std::string> sets;
     long steps = -1;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/build_info.hpp"
 #include "io/checkpoint.hpp"
 #include "stability/support.hpp"
 #include "support/flow.hpp"
@@ -68,6 +69,19 @@ void expectBitIdenticalRestart(const std::string& scenePath, const std::vector<s
     EXPECT_EQ(b.at("steps_this_run"), n - half);
     EXPECT_EQ(b.at("steps"), n);
     EXPECT_GT(b.at("wall_seconds_total").get<double>(), b.at("wall_seconds").get<double>());
+    // Which binary ran which steps: one record per segment, contiguous, this build's revision.
+    const auto& h = b.at("segment_history");
+    ASSERT_EQ(h.size(), 2u) << h;
+    EXPECT_EQ(h[0].at("first_step"), 0);
+    EXPECT_EQ(h[0].at("last_step"), half);
+    EXPECT_EQ(h[1].at("first_step"), half);
+    EXPECT_EQ(h[1].at("last_step"), n);
+    for (const auto& seg : h) {
+      EXPECT_EQ(seg.at("revision"), std::string(buildRevision()));
+      EXPECT_EQ(seg.at("ranks"), worldSize());
+    }
+    EXPECT_EQ(b.at("revision"), std::string(buildRevision()));
+    EXPECT_EQ(a.at("segment_history").size(), 1u);
     // scene.yaml records the scene as run (file plus --set): it loads back to the same tree,
     // and summary.json lists the --set overrides in order.
     const Scene rec = loadSceneWithEffects(tmp.sub("split/scene.yaml"));
