@@ -77,6 +77,25 @@ class PorousTableTest(unittest.TestCase):
             self.assertIn("section-averaged gradient against mu_S (3 finished moduli", out)
             self.assertIn("0.1 Pa/m per Pa, intercept 50 Pa/m, R^2 = 1.000", out)
 
+    def test_grid_cost_pairs_the_grids(self):
+        # grid_cost.py: a modulus's finished runs on the two grids, of one model and tag only.
+        sys.path.insert(0, os.path.join(CASES, "porous_bed"))
+        import grid_cost
+        with tempfile.TemporaryDirectory() as tmp:
+            res = os.path.join(tmp, "results.csv")
+            base = {"t_end": "1.0000", "steps": "100", "wall_s": "1", "ranks": "1", "section_gradient": "50",
+                    "centroid_rise_mm": "1"}
+            ids = ["mu100_extend+global+exact_25x75x25", "mu100_extend+global+exact_50x150x50",
+                   "mu250_extend+global+exact_50x150x50", "mu100_extend+global_50x150x50",
+                   "mu100_integrate+global+exact_25x75x25", "mu500_extend+global+exact_20x60x20"]
+            rows = [dict(base, run_id=i) for i in ids]
+            rows.append(dict(base, run_id="mu750_extend+global+exact_25x75x25", t_end="0.5000"))  # unfinished
+            write(res, *rows)
+            got = grid_cost.sets(res, "extend", "+global+exact")
+            self.assertEqual({mu: sorted(g) for mu, g in got.items()},
+                             {100: ["25x75x25", "50x150x50"], 250: ["50x150x50"]})
+            self.assertEqual(grid_cost.cells("25x75x25"), 46875)
+
 
 if __name__ == "__main__":
     unittest.main()
