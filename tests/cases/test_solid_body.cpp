@@ -182,6 +182,14 @@ TEST(SolidBody, BentBlock) {
   EXPECT_NEAR(diag(sim, "solid_bending"), A, 0.1 * kH);
   EXPECT_LT(diag(sim, "solid_tilt_deg"), 0.01); // symmetric about x = 0.5: measured 6e-5 degree
   EXPECT_EQ(sim.state().diag.count("solid_gap_y-"), 0u); // contacts: false
+  // bending: false drops that one measure and leaves the others as they were.
+  const std::string flat = std::string(shape).replace(std::string(shape).find("{contacts: false}"), 17,
+                                                      "{contacts: false, bending: false}");
+  Simulation off(test::scene(flat), MPI_COMM_WORLD);
+  off.initialize();
+  EXPECT_EQ(off.state().diag.count("solid_bending"), 0u);
+  for (const char* k : {"solid_volume", "solid_cy", "solid_tilt_deg"})
+    EXPECT_EQ(diag(off, k), diag(sim, k)) << k;
 }
 
 // The section is validated: an unknown key names file, line and key.
