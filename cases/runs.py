@@ -239,6 +239,18 @@ def unfinished(row):
         "; to finish ~%s s" % row["to_finish_s"] if row.get("to_finish_s") else "")
 
 
+def not_run(results, rid):
+    """A run of the set not begun, in words: for a run on the exact projection whose twin on
+    the approximate one (the same id without "+exact") finished, what that one took, the
+    nearest measure of what this one will (issue 22 item 5; the exact step costs about what
+    the approximate one did, perf/README.md)."""
+    twin = results.get(rid.replace("+exact", "")) if "+exact" in rid else None
+    if not twin or not twin.get("steps"):
+        return "*not run*"
+    return "*not run*; on the approximate projection %s steps, %s s on %s rank(s)" % (
+        twin["steps"], twin.get("wall_s", "?"), twin.get("ranks", "?"))
+
+
 def table(ledger, ids):
     with open(ledger, newline="") as f:
         rows = [r for r in csv.DictReader(f) if not ids or r.get("run_id") in ids]

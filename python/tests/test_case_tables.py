@@ -50,6 +50,17 @@ class TableTest(unittest.TestCase):
             self.assertTrue(all(r.count(" | ") == 7 for r in rows))   # quantity, paper and six runs
 
 
+class NotRunTest(unittest.TestCase):
+    def test_quotes_the_approximate_twin(self):
+        sys.path.insert(0, CASES)
+        import runs
+        res = {"mu1000_integrate+global_75": {"steps": "7444", "wall_s": "11084", "ranks": "1"}}
+        self.assertEqual(runs.not_run(res, "mu1000_integrate+global+exact_75"),
+                         "*not run*; on the approximate projection 7444 steps, 11084 s on 1 rank(s)")
+        self.assertEqual(runs.not_run(res, "mu2000_integrate+global+exact_75"), "*not run*")
+        self.assertEqual(runs.not_run(res, "mu1000_integrate+global_75"), "*not run*")  # no twin of its own
+
+
 class PorousTableTest(unittest.TestCase):
     def test_fit_and_cells(self):
         sys.path.insert(0, os.path.join(CASES, "porous_bed"))
