@@ -213,6 +213,21 @@ void BM_ReinitIteration(benchmark::State& s) {
   });
   report(s, 144, f.nBand);
 }
+// The volume constraint alone (Eq. 19-21): a copy over the band, then the constrained
+// cells (list, coef, out: 20 B; dH, psiT, psiM: 24 B), counted per band cell.
+void BM_ReinitConstraint(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { reinit::applyConstraint(f.g, f.band, f.nBand, f.psiT, f.psi, f.dH, f.psi1); });
+  report(s, 44, f.nBand);
+}
+// The per-call band set-up with the constraint (gradMagField over the owned cells and one
+// layer, then flags, S, D and coef per band cell: list, flags, sgn, dist, coef 32 B; psi0, dH,
+// gm 24 B).
+void BM_ReinitPrepare(benchmark::State& s) {
+  auto& f = fx();
+  loop(s, [&] { reinit::prepareBand(f.g, f.band, f.nBand, f.psi, f.dH, f.gm, 6 * f.h, true); });
+  report(s, 56, f.nBand);
+}
 // --- projection pieces ---
 // Reads u (3), writes div (1).
 void BM_Divergence(benchmark::State& s) {
@@ -323,6 +338,8 @@ void registerAll(bool wall) {
   add("ExtensionSweep", BM_ExtensionSweep);
   add("ReinitStage", BM_ReinitStage);
   add("ReinitIteration", BM_ReinitIteration);
+  add("ReinitConstraint", BM_ReinitConstraint);
+  add("ReinitPrepare", BM_ReinitPrepare);
   add("Divergence", BM_Divergence);
   add("SubtractGradient", BM_SubtractGradient);
   add("HaloVector", BM_HaloVector);
