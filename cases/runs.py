@@ -11,7 +11,7 @@ each long run got is known even when the machine that ran it is gone. Used by ca
     runs.py progress LEDGER OUT                      (each "running" row: step and t of its last
                                                       checkpoint in OUT/<run id>, what a resume continues from)
 
-revisions: the builds (git describe) that ran its segments, from summary.json.
+revisions: the builds (commits) that ran its segments, from summary.json.
 States: running, wall_limit (voigt exit 75), stopped (SIGINT/SIGTERM), finished, failed.
 to_finish_s: for a run that stopped before its end, the wall seconds its last segment's pace
 (seconds per step, mean dt of its last 100 steps) needs to reach the end time (issue 22 item 5).

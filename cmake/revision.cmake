@@ -1,15 +1,23 @@
 # Writes OUT (a C++ source with voigt::buildRevision() and voigt::buildIsa()) from the
-# source tree's git state. Run at configure time and at every build (target
+# source tree's git state: the commit, 12 hex digits. Run at configure time and at every build (target
 # voigt_revision); configure_file leaves OUT untouched when nothing changed, so a build
 # after a commit recompiles this one file and relinks, and an unchanged tree nothing.
 # Without git (a release tarball) the revision is "unknown".
 set(rev "unknown")
 find_program(_git git)
+# "-dirty" when what the binary is built from differs from the commit: changed or untracked
+# files under src/, kernels/, cmake/ or CMakeLists.txt (not the case ledgers and results that
+# running studies rewrite).
 if(_git AND EXISTS "${SRC}/.git")
-  execute_process(COMMAND "${_git}" -C "${SRC}" describe --always --dirty --abbrev=12
+  execute_process(COMMAND "${_git}" -C "${SRC}" rev-parse --short=12 HEAD
                   OUTPUT_VARIABLE _out OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE _rc ERROR_QUIET)
   if(_rc EQUAL 0 AND _out)
     set(rev "${_out}")
+    execute_process(COMMAND "${_git}" -C "${SRC}" status --porcelain -- src kernels cmake CMakeLists.txt
+                    OUTPUT_VARIABLE _changed OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+    if(_changed)
+      set(rev "${rev}-dirty")
+    endif()
   endif()
 endif()
 set(VOIGT_REVISION "${rev}")

@@ -3,8 +3,8 @@
 // the revision of each run segment (a long run may continue on a newer build).
 
 namespace voigt {
-// `git describe --always --dirty --abbrev=12` of the source tree at build time
-// ("unknown" without git). Generated: cmake/revision.cmake.
+// The source tree's commit at build time (12 hex digits; "-dirty" when src/, kernels/,
+// cmake/ or CMakeLists.txt differ from it; "unknown" without git). cmake/revision.cmake.
 const char* buildRevision();
 // The -march flags chosen by CMake's VOIGT_ARCH ("compiler default" if none).
 const char* buildIsa();
