@@ -239,13 +239,17 @@ def unfinished(row):
         "; to finish ~%s s" % row["to_finish_s"] if row.get("to_finish_s") else "")
 
 
-def not_run(results, rid):
+def not_run(results, rid, t_end):
     """A run of the set not begun, in words: for a run on the exact projection whose twin on
-    the approximate one (the same id without "+exact") finished, what that one took, the
+    the approximate one (the same id without "+exact") reached t_end, what that one took, the
     nearest measure of what this one will (issue 22 item 5; the exact step costs about what
     the approximate one did, perf/README.md)."""
     twin = results.get(rid.replace("+exact", "")) if "+exact" in rid else None
-    if not twin or not twin.get("steps"):
+    try:
+        reached = twin is not None and abs(float(twin["t_end"]) - t_end) <= 1e-6 * t_end and int(twin["steps"]) > 0
+    except (KeyError, ValueError):
+        reached = False
+    if not reached:
         return "*not run*"
     return "*not run*; on the approximate projection %s steps, %s s on %s rank(s)" % (
         twin["steps"], twin.get("wall_s", "?"), twin.get("ranks", "?"))

@@ -132,11 +132,12 @@ inline void gradMagField(const Grid& g, const Field& psi0, const Field& dH, cons
   });
 }
 
-// The band cells with H'(psi0) > 0 into b.con / b.conQ (allocated here on first use or when
-// the band outgrows them) and their runs; sets b.nCon, b.nConRuns.
+// The band cells with H'(psi0) > 0 into b.con / b.conQ (allocated on first use, as large
+// as the band list b.cell can be, so never again in a run) and their runs; sets b.nCon,
+// b.nConRuns.
 inline void listConstrained(BandViews& b, int n, const Field& dH) {
   if (b.con.extent(0) < size_t(n) || b.con.extent(0) == 0) {
-    const size_t cap = size_t(n > 0 ? n : 1);
+    const size_t cap = std::max<size_t>({b.cell.extent(0), size_t(n), 1});
     b.con = IntList("reinit_con", cap), b.conQ = IntList("reinit_con_q", cap);
     b.conRuns = IntList("reinit_con_runs", cap), b.conCoef = RealList("reinit_con_coef", cap);
   }

@@ -31,6 +31,15 @@ def cells(grid):
     return n
 
 
+def finished(r):
+    """A row at t = 1 s with the numbers the plot needs."""
+    try:
+        return abs(float(r["t_end"]) - 1) < 1e-6 and int(r["steps"]) > 0 and all(
+            r.get(k) not in (None, "") and float(r[k]) == float(r[k]) for k, _, _ in PANELS)
+    except (KeyError, ValueError):
+        return False
+
+
 def sets(path, model, tag):
     """{mu: {grid: row}} of the finished (t_end = 1 s) runs mu<mu>_<model><tag>_<grid>."""
     pat = re.compile(r"mu(\d+)_%s%s_(\d+x\d+x\d+)$" % (re.escape(model), re.escape(tag)))
@@ -38,7 +47,7 @@ def sets(path, model, tag):
     with open(path, newline="") as f:
         for r in csv.DictReader(f):
             m = pat.match(r["run_id"])
-            if m and m.group(2) in GRIDS and r.get("t_end") and abs(float(r["t_end"]) - 1) < 1e-6:
+            if m and m.group(2) in GRIDS and finished(r):
                 out.setdefault(int(m.group(1)), {})[m.group(2)] = r
     return dict(sorted(out.items()))
 
@@ -64,7 +73,7 @@ def main():
             for mu, by_grid in s.items():
                 pts = [(cells(g) * int(by_grid[g]["steps"]), float(by_grid[g][key]), by_grid[g]) for g in GRIDS
                        if g in by_grid]
-                c = "C%d" % mus.index(mu)
+                c = "C%d" % (mus.index(mu) % 10)
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-" if k == 0 else "s--", color=c,
                         alpha=1 if k == 0 else 0.35, mfc=None if k == 0 else "none",
                         label="%d Pa %s" % (mu, tag))

@@ -68,7 +68,7 @@ def table(results, ledger, model, tag, grid, packing):
                 v = done[mu].get(key) or ""
                 cells.append(v + unit if v else "-")
             elif n == 0:
-                cells.append(runs.unfinished(ledger[i]) if i in ledger else runs.not_run(results, i))
+                cells.append(runs.unfinished(ledger[i]) if i in ledger else runs.not_run(results, i, 1.0))
             else:
                 cells.append("")
         lines.append("| %s | %s | %s |" % (name, paper, " | ".join(cells)))

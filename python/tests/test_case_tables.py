@@ -54,11 +54,13 @@ class NotRunTest(unittest.TestCase):
     def test_quotes_the_approximate_twin(self):
         sys.path.insert(0, CASES)
         import runs
-        res = {"mu1000_integrate+global_75": {"steps": "7444", "wall_s": "11084", "ranks": "1"}}
-        self.assertEqual(runs.not_run(res, "mu1000_integrate+global+exact_75"),
+        res = {"mu1000_integrate+global_75": {"steps": "7444", "wall_s": "11084", "ranks": "1", "t_end": "0.5000"},
+               "mu2000_integrate+global_75": {"steps": "900", "wall_s": "80", "ranks": "1", "t_end": "0.0800"}}
+        self.assertEqual(runs.not_run(res, "mu1000_integrate+global+exact_75", 0.5),
                          "*not run*; on the approximate projection 7444 steps, 11084 s on 1 rank(s)")
-        self.assertEqual(runs.not_run(res, "mu2000_integrate+global+exact_75"), "*not run*")
-        self.assertEqual(runs.not_run(res, "mu1000_integrate+global_75"), "*not run*")  # no twin of its own
+        self.assertEqual(runs.not_run(res, "mu2000_integrate+global+exact_75", 0.5), "*not run*")  # twin short of 0.5 s
+        self.assertEqual(runs.not_run(res, "mu5000_integrate+global+exact_75", 0.5), "*not run*")  # no twin
+        self.assertEqual(runs.not_run(res, "mu1000_integrate+global_75", 0.5), "*not run*")  # no twin of its own
 
 
 class PorousTableTest(unittest.TestCase):

@@ -172,7 +172,8 @@ nlohmann::json Simulation::restore(const std::string& file) {
   segments_ = m.value("run_segments", 1L) + 1;
   segmentHistory_ = m.value("segment_history", nlohmann::json::array());
   if (segmentHistory_.empty()) // a checkpoint from before the record: its segments, binaries unknown
-    segmentHistory_.push_back({{"segments", segments_ - 1}, {"revision", nullptr}, {"last_step", st_.step}});
+    segmentHistory_.push_back({{"segment", 1}, {"segments", segments_ - 1}, {"revision", nullptr},
+                               {"first_step", 0}, {"last_step", st_.step}});
   compareScene(m);
   nextOutput_ = m.at("next_output").get<double>();
   outputIndex_ = m.at("output_index").get<int>();

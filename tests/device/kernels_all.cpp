@@ -265,6 +265,8 @@ void reinitialisation(const Grid& g, Fields& f) {
   put("gradMagField", sumAbs(f.gm, cellRange(g)));
   reinit::prepareBand(g, b, n, f.q, f.dH, f.gm, band, true);
   put("prepareBand.flags", sumList(b.flags, n)), put("prepareBand.values", sumBand(b, n));
+  reinit::listConstrained(b, n, f.dH); // prepareBand called it; again: the same list
+  put("listConstrained", b.nCon), put("listConstrained.list", sumList(b.con, b.nCon));
   Kokkos::deep_copy(f.psi1, f.q), Kokkos::deep_copy(f.psiT, f.q);
   const double dtau = 0.5 * h;
   for (int sub = 0; sub < 2; ++sub) {
