@@ -132,6 +132,26 @@ inline void gradMagField(const Grid& g, const Field& psi0, const Field& dH, cons
   });
 }
 
+// The Eq. (21) integral over cell p's 27 neighbours o: SUM w_o term(w_o H'_o, H'_o, o), with w
+// the tensor weights (1, 22, 1)/24 and H' = dH; branch-free, a neighbour with H' = 0 adds 0.0
+// (H' >= 0, finite fields): the sums, in the order, of skipping it.
+template <class Term>
+KOKKOS_INLINE_FUNCTION double sumOverH(int p, int sj, int sk, const FlatField& fd, const Term& term) {
+  const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
+  double s = 0;
+  VOIGT_UNROLL
+  for (int c = -1; c <= 1; ++c)
+    VOIGT_UNROLL
+    for (int bb = -1; bb <= 1; ++bb)
+      VOIGT_UNROLL
+      for (int a = -1; a <= 1; ++a) {
+        const int o = p + a + bb * sj + c * sk;
+        const double dn = fd(o);
+        s += dn > 0 ? term(w[a + 1] * w[bb + 1] * w[c + 1] * dn, dn, o) : 0.0;
+      }
+  return s;
+}
+
 // The band cells with H'(psi0) > 0 into b.con / b.conQ (allocated on first use, as large
 // as the band list b.cell can be, so never again in a run) and their runs; sets b.nCon,
 // b.nConRuns.
@@ -198,18 +218,7 @@ inline void prepareBand(const Grid& g, BandViews& b, int n, const Field& psi0, c
   // neighbour with H' = 0 adds 0 (H' >= 0, finite fields), the sum and order of skipping it.
   listConstrained(b, n, dH);
   for_runs("reinit_con_coef", b.con, b.conRuns, b.nConRuns, b.nCon, KOKKOS_LAMBDA(int m, int p) {
-        const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
-        double den = 0;
-        VOIGT_UNROLL
-        for (int c = -1; c <= 1; ++c)
-          VOIGT_UNROLL
-          for (int bb = -1; bb <= 1; ++bb)
-            VOIGT_UNROLL
-            for (int a = -1; a <= 1; ++a) {
-              const int o = p + a + bb * sj + c * sk;
-              const double dn = fd(o);
-              den += dn > 0 ? w[a + 1] * w[bb + 1] * w[c + 1] * dn * dn * fg(o) : 0.0;
-            }
+        const double den = sumOverH(p, sj, sk, fd, [&](double wdn, double dn, int o) { return wdn * dn * fg(o); });
         const double f = fd(p) * fg(p);
         // den >= w_c^3 H'_c f_c, so den ~ 0 only where f_c ~ 0 too: lambda = 0 there.
         const double coef = den > 1e-300 ? f / den : 0.0;
@@ -261,18 +270,7 @@ inline void applyConstraint(const Grid& g, const BandViews& b, int n, const Fiel
   if (n > 0 && b.nRuns == 0) throw std::logic_error("applyConstraint: the band's runs were not built (listRuns)");
   for_runs("reinit_constraint_copy", b.cell, b.runs, b.nRuns, n, KOKKOS_LAMBDA(int, int p) { fo(p) = ft(p); });
   for_runs("reinit_constraint", b.con, b.conRuns, b.nConRuns, b.nCon, KOKKOS_LAMBDA(int m, int p) {
-        const double w[3] = {1.0 / 24, 22.0 / 24, 1.0 / 24};
-        double num = 0;
-        VOIGT_UNROLL
-        for (int c = -1; c <= 1; ++c)
-          VOIGT_UNROLL
-          for (int bb = -1; bb <= 1; ++bb)
-            VOIGT_UNROLL
-            for (int a = -1; a <= 1; ++a) {
-              const int o = p + a + bb * sj + c * sk;
-              const double dn = fd(o);
-              num += dn > 0 ? w[a + 1] * w[bb + 1] * w[c + 1] * dn * (ft(o) - fm(o)) : 0.0;
-            }
+        const double num = sumOverH(p, sj, sk, fd, [&](double wdn, double, int o) { return wdn * (ft(o) - fm(o)); });
         fo(p) = ft(p) - b.conCoef(m) * num;
       });
 }
