@@ -109,6 +109,23 @@ class PorousTableTest(unittest.TestCase):
                              {100: ["25x75x25", "50x150x50"], 250: ["50x150x50"]})
             self.assertEqual(grid_cost.cells("25x75x25"), 46875)
 
+    def test_outlet_stats_reads_the_last_y_plane(self):
+        # outlet.py: arrays are stored (z, y, x, 3); the outlet is the last y plane, backflow u_y < 0.
+        sys.path.insert(0, os.path.join(CASES, "porous_bed"))
+        try:
+            import numpy as np
+            import outlet
+        except ImportError:  # numpy, h5py: scripts/setup --figures
+            self.skipTest("numpy/h5py")
+        u = np.zeros((3, 4, 5, 3))
+        u[..., 1] = 0.1
+        u[1, 2, 3] = (3.0, 4.0, 0.0)       # 5 m/s inside the duct
+        u[0, -1, 0:2, 1] = -0.2            # 2 of the 15 outlet nodes flow back
+        u[2, -1, 4] = (0.0, 0.3, 0.4)      # the outlet's fastest: 0.5 m/s
+        vmax, top, back = outlet.outlet_stats(u)
+        self.assertEqual((vmax, top), (5.0, 0.5))
+        self.assertAlmostEqual(back, 2 / 15, places=15)
+
 
 if __name__ == "__main__":
     unittest.main()
