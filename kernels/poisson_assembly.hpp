@@ -35,27 +35,69 @@ KOKKOS_INLINE_FUNCTION int rowCorners(const VecField& coef, const CellRows& rw, 
   return mask;
 }
 
+// One row of poissonRowPattern (below): the zero pattern of cell l's 24 corner coefficients
+// (as rowCorners; differs |= 1 when it changed), the identity flag, and the row's bound
+// 8 A_rr (1 on identity rows); s[d] = 1 / (16 h_d^2).
+KOKKOS_INLINE_FUNCTION double rowPatternBound(const VecField& coef, const GridGeom& G, const RowFlags& ident,
+                                              const RowFlags& pattern, int& differs, int r, const int l[3],
+                                              const double s[3]) {
+  int mask = 0;
+  double diag = 0;
+  VOIGT_UNROLL
+  for (int cn = 0; cn < 8; ++cn) {
+    const int i = l[0] + (cn & 1), j = l[1] + ((cn >> 1) & 1), k = l[2] + ((cn >> 2) & 1);
+    const double wi = G.nodeWeightInv(i, j, k);
+    VOIGT_UNROLL
+    for (int d = 0; d < 3; ++d) {
+      const double v = coef.c[d](i, j, k);
+      mask |= (v != 0) << (3 * cn + d);
+      diag += v * wi * s[d];
+    }
+  }
+  differs |= pattern(r) != mask;
+  pattern(r) = mask;
+  ident(r) = mask == 0 ? 1 : 0;
+  return mask == 0 ? 1.0 : 8 * diag;
+}
+
 // What the exact operator needs of its rows when it is applied without a matrix
 // (kernels/poisson_apply.hpp): the zero pattern and `changed` as assemblePoisson, identity
 // rows (no free corner coefficient: the row would be empty), and a bound on ||A||_inf:
 // row r's absolute sum is at most 8 A_rr (each corner term s_d(n) enters at most 8 entries,
 // A_rr = sum over corners and d of s_d(n)), and at least A_rr. Returns max_r 8 A_rr (1 on
 // identity rows), the round-off scale of PoissonSolver::solve and of the null-space test.
+// Host backends walk x lines (one (j, k) a work item, rows consecutive): decoding each row's
+// cell took three integer divisions, and 1/(16 h^2) is multiplied, not divided (the bound may
+// differ from the divided form in its last bit; it is a scale, within 8x by construction).
 inline double poissonRowPattern(const RowFlags& ident, const RowFlags& pattern, const GridGeom& G, const CellRows& rw,
                                 const VecField& coef, int nrows, const Kokkos::View<int, MemSpace>& changed) {
   double amax = 0;
+  const double s0 = 1 / (16 * G.h[0] * G.h[0]), s1 = 1 / (16 * G.h[1] * G.h[1]), s2 = 1 / (16 * G.h[2] * G.h[2]);
+#if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
+  if (!kOnDevice) {
+    const int n0 = rw.n0, n1 = rw.n1, ng = rw.ng, lines = n0 > 0 ? nrows / n0 : 0;
+    Kokkos::parallel_reduce(
+        "poisson_row_pattern", Kokkos::RangePolicy<ExecSpace>(0, lines), KOKKOS_LAMBDA(int q, double& rowMax) {
+          const double s[3] = {s0, s1, s2};
+          int l[3] = {ng, ng + q % n1, ng + q / n1}, differs = 0;
+          for (int r = q * n0; l[0] < ng + n0; ++l[0], ++r) {
+            const double bound = rowPatternBound(coef, G, ident, pattern, differs, r, l, s);
+            rowMax = rowMax > bound ? rowMax : bound;
+          }
+          if (differs) changed() = 1; // benign race: every writer stores 1
+        },
+        Kokkos::Max<double>(amax));
+    return amax;
+  }
+#endif
   Kokkos::parallel_reduce(
       "poisson_row_pattern", Kokkos::RangePolicy<ExecSpace>(0, nrows), KOKKOS_LAMBDA(int r, double& rowMax) {
+        const double s[3] = {s0, s1, s2};
         int l[3];
-        double cv[24];
-        const int mask = rowCorners(coef, rw, r, pattern, changed, l, cv);
-        double diag = 0;
-        for (int cn = 0; cn < 8; ++cn) {
-          const double wi = G.nodeWeightInv(l[0] + (cn & 1), l[1] + ((cn >> 1) & 1), l[2] + ((cn >> 2) & 1));
-          for (int d = 0; d < 3; ++d) diag += cv[3 * cn + d] * wi / (16 * G.h[d] * G.h[d]);
-        }
-        ident(r) = mask == 0 ? 1 : 0;
-        const double bound = mask == 0 ? 1.0 : 8 * diag;
+        rw.cell(r, l[0], l[1], l[2]);
+        int differs = 0;
+        const double bound = rowPatternBound(coef, G, ident, pattern, differs, r, l, s);
+        if (differs) changed() = 1; // benign race: every writer stores 1
         rowMax = rowMax > bound ? rowMax : bound;
       },
       Kokkos::Max<double>(amax));
