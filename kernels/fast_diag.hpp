@@ -190,6 +190,31 @@ inline void fdConvertRows(const Kokkos::View<const TI*, Kokkos::LayoutLeft, MemS
       "fd_convert_rows", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(size_t r) { out(r) = TO(in(r)); });
 }
 
+// The preconditioner's ends (FastDiagPrec: Y = alpha Z A0^+ Z X + beta Y, Z zeroing the
+// identity rows), each one pass: out(r) = in(r) in the passes' type, 0 where ident(r) != 0;
+// and y(r) = alpha (0 where ident(r) != 0, else t(r)) + beta y(r) (beta = 0: y not read).
+// The same arithmetic as the copy, zeroing, conversion and axpby they replace.
+template <class TO>
+inline void fdMaskIn(const Kokkos::View<const double*, Kokkos::LayoutLeft, MemSpace>& in,
+                     const Kokkos::View<int*, MemSpace>& ident, const Kokkos::View<TO*, Kokkos::LayoutLeft, MemSpace>& out,
+                     int n) {
+  Kokkos::parallel_for(
+      "fd_mask_in", Kokkos::RangePolicy<ExecSpace>(0, n),
+      KOKKOS_LAMBDA(int r) { out(r) = ident(r) ? TO(0) : TO(in(r)); });
+}
+
+template <class TI>
+inline void fdMaskOut(double alpha, const Kokkos::View<const TI*, Kokkos::LayoutLeft, MemSpace>& t,
+                      const Kokkos::View<int*, MemSpace>& ident, double beta,
+                      const Kokkos::View<double*, Kokkos::LayoutLeft, MemSpace>& y, int n) {
+  Kokkos::parallel_for(
+      "fd_mask_out", Kokkos::RangePolicy<ExecSpace>(0, n), KOKKOS_LAMBDA(int r) {
+        const double v = ident(r) ? 0.0 : double(t(r));
+        y(r) = alpha * v + (beta == 0 ? 0.0 : beta * y(r));
+      });
+  Kokkos::fence();
+}
+
 // dst = src converted (the eigenvectors in the passes' precision).
 template <class T>
 inline void fdConvertDense(const Dense& src, const DenseOf<T>& dst) {

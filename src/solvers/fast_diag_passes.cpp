@@ -55,10 +55,8 @@ void FastDiagonalization::allocate(Passes<T>& P) const {
     P.i1 = P.o1;
     P.i2 = P.o2;
   }
-  if (!std::is_same<T, double>::value) {
-    P.r = Rows<T>(std::string(tag) + "rows_in", g_.cellsOwned());
-    P.x = Rows<T>(std::string(tag) + "rows_out", g_.cellsOwned());
-  }
+  P.r = Rows<T>(std::string(tag) + "rows_in", g_.cellsOwned());
+  P.x = Rows<T>(std::string(tag) + "rows_out", g_.cellsOwned());
 }
 
 template <class T>
@@ -171,6 +169,19 @@ void FastDiagonalization::apply(const ConstRowVector& r, const RowVector& z) con
   run(f_, Kokkos::View<const float*, Kokkos::LayoutLeft, MemSpace>(f_.r), f_.x);
   fdConvertRows<float, double>(f_.x, z, n);
   Kokkos::fence();
+}
+
+void FastDiagonalization::applyMasked(const ConstRowVector& x, const Kokkos::View<int*, MemSpace>& ident, double alpha,
+                                      double beta, const RowVector& y) const {
+  const int n = int(g_.cellsOwned());
+  auto ends = [&](const auto& P) {
+    using T = typename std::remove_reference_t<decltype(P.r)>::value_type;
+    fdMaskIn<T>(x, ident, P.r, n);
+    run(P, Kokkos::View<const T*, Kokkos::LayoutLeft, MemSpace>(P.r), P.x);
+    fdMaskOut<T>(alpha, Kokkos::View<const T*, Kokkos::LayoutLeft, MemSpace>(P.x), ident, beta, y, n);
+  };
+  if (single_) ends(f_);
+  else ends(d_);
 }
 
 } // namespace voigt

@@ -54,6 +54,10 @@ class FastDiagonalization {
   void setup(const VecField& coef);
   // z = A0^+ r on this rank's rows (r: owned rows, i fastest). Collective.
   void apply(const ConstRowVector& r, const RowVector& z) const;
+  // y = alpha Z A0^+ Z x + beta y, Z zeroing the rows where ident != 0 (the preconditioner of
+  // CG, FastDiagPrec): the zeroing and conversions fused into the first and last passes.
+  void applyMasked(const ConstRowVector& x, const Kokkos::View<int*, MemSpace>& ident, double alpha, double beta,
+                   const RowVector& y) const;
   bool single() const { return single_; }
   int solveAxis() const { return s_; } // the axis solved by lines (1 or 2), -1: none
   int singularLines() const { return (int)lines_.extent(0); } // on this rank (after setup)
@@ -69,7 +73,7 @@ class FastDiagonalization {
     Grid3Of<T> inv;                 // no solve axis: 1/eigenvalue on this rank's inner slab of modes
     Grid3Of<T> o1, o2, i1, i2;      // outer and inner work arrays (1 rank: the whole grid, o == i)
     typename Grid3Of<T>::HostMirror oh, ih;
-    Kokkos::View<T*, Kokkos::LayoutLeft, MemSpace> r, x; // rows in T (float only)
+    Kokkos::View<T*, Kokkos::LayoutLeft, MemSpace> r, x; // rows in T (applyMasked; apply in float)
     mutable std::vector<T> rowsH;
   };
   template <class T>

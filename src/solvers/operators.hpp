@@ -51,25 +51,20 @@ struct ProjectedPrec final : Operator {
 // sides, so that it stays symmetric whatever X holds there.
 struct FastDiagPrec final : Operator {
   FastDiagPrec(Teuchos::RCP<const Map> m, const FastDiagonalization* fd, RowFlags ident, int nrows)
-      : map(m), fd(fd), ident(ident), nrows(nrows), t("fd_prec_t", nrows), xz("fd_prec_x", nrows) {}
+      : map(m), fd(fd), ident(ident), nrows(nrows) {}
   Teuchos::RCP<const Map> getDomainMap() const override { return map; }
   Teuchos::RCP<const Map> getRangeMap() const override { return map; }
   void apply(const MV& X, MV& Y, Teuchos::ETransp, Scalar alpha, Scalar beta) const override {
     for (size_t c = 0; c < Y.getNumVectors(); ++c) {
       ConstRowVector x = Kokkos::subview(X.getLocalViewDevice(Tpetra::Access::ReadOnly), Kokkos::ALL(), c);
       RowVector y = Kokkos::subview(Y.getLocalViewDevice(Tpetra::Access::ReadWrite), Kokkos::ALL(), c);
-      Kokkos::deep_copy(xz, x);
-      zeroIdentityRows(xz, ident, nrows);
-      fd->apply(xz, t);
-      zeroIdentityRows(t, ident, nrows);
-      fdAxpby(alpha, t, beta, y, nrows);
+      fd->applyMasked(x, ident, alpha, beta, y);
     }
   }
   Teuchos::RCP<const Map> map;
   const FastDiagonalization* fd;
   RowFlags ident;
   int nrows;
-  RowVector t, xz;
 };
 
 // The exact operator without its matrix (kernels/poisson_apply.hpp): what CG multiplies by

@@ -310,6 +310,17 @@ void projectionExtras(const Grid& g, Fields& f) {
       },
       Kokkos::Max<double>(big));
   put("fdFloatPasses", diff <= 1e-5 * big ? 1.0 : 0.0);
+  // The preconditioner's ends (FastDiagPrec): every third row an identity row.
+  Kokkos::View<int*, MemSpace> id("id", m);
+  Kokkos::parallel_for("flag_rows", Kokkos::RangePolicy<ExecSpace>(0, m), KOKKOS_LAMBDA(int r) { id(r) = r % 3 == 1; });
+  RowVector ym("ym", m);
+  Kokkos::deep_copy(ym, 0.25);
+  fdMaskIn<float>(rd, id, rf, m);
+  fdMaskOut<float>(0.5, rf, id, -2.0, ym, m);
+  auto yh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ym);
+  double sy = 0;
+  for (int r = 0; r < m; ++r) sy += std::fabs(yh(r)) * (1 + r % 3);
+  put("fdMaskInOut", sy);
 }
 
 // The solve-axis passes (kernels/fd_tridiagonal.hpp) on this rank's cells as a slab: a 1-D
