@@ -10,26 +10,9 @@
 // These are its passes over a whole-grid array (global cells, i fastest): one 1-D
 // transform along an axis (a small dense matrix applied to every grid line) and the
 // eigenvalue scaling. 2 n_axis flops a cell a transform.
-#include "core/field.hpp"
-#include "core/index_space.hpp"
+#include "kernels/fd_xlines.hpp"
 
 namespace voigt {
-
-// The passes are templates on the value type: double, or float for the mixed-precision
-// preconditioner (fast_diagonalization.hpp: half the bytes and twice the SIMD lanes).
-template <class T>
-using Grid3Of = Kokkos::View<T***, Kokkos::LayoutLeft, MemSpace>; // a whole grid, i fastest
-template <class T>
-using CGrid3Of = Kokkos::View<const T***, Kokkos::LayoutLeft, MemSpace>;
-template <class T>
-using DenseOf = Kokkos::View<T**, Kokkos::LayoutLeft, MemSpace>; // V_d(node-free index q, mode a)
-template <class T>
-struct FdSame { using type = T; }; // a non-deduced T: the input's type follows the output's
-template <class T>
-using CGrid3In = CGrid3Of<typename FdSame<T>::type>;
-using Grid3 = Grid3Of<double>;
-using CGrid3 = CGrid3Of<double>;
-using Dense = DenseOf<double>;
 
 namespace fd_detail {
 template <int Axis, class T>
@@ -88,37 +71,11 @@ inline void fdTransform(const CGrid3In<T>& in, const Grid3Of<T>& out, const Dens
   if (Axis == 0 && !kOnDevice) { // host backends, x lines: o(r) += W(r, t) x(t), an axpy
     // over contiguous outputs that vectorises (the point-wise form is a dot product, which
     // the compiler may not reassociate); same summation order, so the same bits.
-    DenseOf<T> W = V; // back: column a of V
-    if (!Back) { // forward: W(a, q) = V(q, a)
-      W = DenseOf<T>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "fd_VT"), m, m);
-      Kokkos::parallel_for(
-          "fd_transpose", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {m, m}),
-          KOKKOS_LAMBDA(int q, int a) { W(a, q) = V(q, a); });
-    }
+    const DenseOf<T> W = Back ? V : fdTransposed(V); // back: column a of V; forward W(a, q) = V(q, a)
     Kokkos::parallel_for(
         "fd_transform_line", Kokkos::RangePolicy<ExecSpace>(0, n1 * n2), KOKKOS_LAMBDA(int l) {
           const int j = l % n1, k = l / n1;
-          T* o = &out(0, j, k);
-          const T* x = &in(0, j, k);
-#pragma GCC ivdep
-          for (int r = 0; r < m; ++r) o[r] = 0;
-          // Four columns a pass within each block of columns [0, nb), [nb, m) (as the slab form).
-          for (int blk = 0; blk < 2; ++blk) {
-            const int tb = blk ? nb : 0, te = blk ? m : nb; // the rows of the same block
-            int t = tb;
-            for (; t + 3 < te; t += 4) {
-              const T w0 = x[t], w1 = x[t + 1], w2 = x[t + 2], w3 = x[t + 3];
-              const T *c0 = &W(0, t), *c1 = &W(0, t + 1), *c2 = &W(0, t + 2), *c3 = &W(0, t + 3);
-#pragma GCC ivdep
-              for (int r = tb; r < te; ++r) o[r] += (c0[r] * w0 + c1[r] * w1) + (c2[r] * w2 + c3[r] * w3);
-            }
-            for (; t < te; ++t) {
-              const T w = x[t];
-              const T* col = &W(0, t);
-#pragma GCC ivdep
-              for (int r = tb; r < te; ++r) o[r] += col[r] * w;
-            }
-          }
+          fd_detail::lineTransform(W, &in(0, j, k), &out(0, j, k), m, nb);
         });
     return;
   }
@@ -133,6 +90,7 @@ inline void fdTransform(const CGrid3In<T>& in, const Grid3Of<T>& out, const Dens
     out(i, j, k) = s;
   });
 }
+
 
 // Mirror folding along Axis (m points, h = ceil(m/2)): out(q) = in(q) + in(m-1-q) and
 // out(h+q) = in(q) - in(m-1-q) for q < m/2, out(h-1) = in(h-1) for odd m (the middle).

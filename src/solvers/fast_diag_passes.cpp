@@ -81,21 +81,43 @@ void FastDiagonalization::build(Passes<T>& P, const Grid3& inv) const {
   P.fwd.clear();
   P.inner.clear();
   P.back.clear();
-  if (nb0 < n0) P.fwd.push_back([](const CG& i, const G& o) { fdFold<0>(i, o); });
-  P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<0, false>(i, o, V0, nb0); });
-  if (s_ == 1) { // x and z on y-slabs; y solved on z-slabs
-    if (nb2 < n2) P.fwd.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
-    P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
-    P.back.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
-    if (nb2 < n2) P.back.push_back([](const CG& i, const G& o) { fdUnfold<2>(i, o); });
-  } else {       // x and y on z-slabs; z solved, or transformed and scaled, on y-slabs
-    if (nb1 < n1) P.fwd.push_back([](const CG& i, const G& o) { fdFold<1>(i, o); });
-    P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
-    P.back.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
-    if (nb1 < n1) P.back.push_back([](const CG& i, const G& o) { fdUnfold<1>(i, o); });
+  const bool foldX = nb0 < n0;
+#if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
+  // Host backends: the x transform and the folds around it as one pass (fdLinePairs).
+  if (!kOnDevice && n0 <= kFdLineMax) {
+    const DenseOf<T> fw = fdPadRows(fdTransposed(V0), nb0), bw = fdPadRows(V0, nb0);
+    if (s_ == 1) { // x and z on y-slabs; y solved on z-slabs
+      const bool foldC = nb2 < n2;
+      P.fwd.push_back([=](const CG& i, const G& o) { fdLinePairs<2, false>(i, o, fw, nb0, foldX, foldC); });
+      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
+      P.back.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
+      P.back.push_back([=](const CG& i, const G& o) { fdLinePairs<2, true>(i, o, bw, nb0, foldX, foldC); });
+    } else {
+      const bool foldC = nb1 < n1;
+      P.fwd.push_back([=](const CG& i, const G& o) { fdLinePairs<1, false>(i, o, fw, nb0, foldX, foldC); });
+      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
+      P.back.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
+      P.back.push_back([=](const CG& i, const G& o) { fdLinePairs<1, true>(i, o, bw, nb0, foldX, foldC); });
+    }
   }
-  P.back.push_back([=](const CG& i, const G& o) { fdTransform<0, true>(i, o, V0, nb0); });
-  if (nb0 < n0) P.back.push_back([](const CG& i, const G& o) { fdUnfold<0>(i, o); });
+#endif
+  if (P.fwd.empty()) { // device backends: one pass each
+    if (foldX) P.fwd.push_back([](const CG& i, const G& o) { fdFold<0>(i, o); });
+    P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<0, false>(i, o, V0, nb0); });
+    if (s_ == 1) { // x and z on y-slabs; y solved on z-slabs
+      if (nb2 < n2) P.fwd.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
+      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
+      P.back.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
+      if (nb2 < n2) P.back.push_back([](const CG& i, const G& o) { fdUnfold<2>(i, o); });
+    } else {       // x and y on z-slabs; z solved, or transformed and scaled, on y-slabs
+      if (nb1 < n1) P.fwd.push_back([](const CG& i, const G& o) { fdFold<1>(i, o); });
+      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
+      P.back.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
+      if (nb1 < n1) P.back.push_back([](const CG& i, const G& o) { fdUnfold<1>(i, o); });
+    }
+    P.back.push_back([=](const CG& i, const G& o) { fdTransform<0, true>(i, o, V0, nb0); });
+    if (foldX) P.back.push_back([](const CG& i, const G& o) { fdUnfold<0>(i, o); });
+  }
   if (s_ < 0) {
     if (nb2 < n2) P.inner.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
     P.inner.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });

@@ -204,6 +204,13 @@ void fastDiagonalization(const Grid& g, Fields& f) {
   double sy = 0;
   for (int i = 0; i < n0; ++i) sy += std::fabs(yh(i));
   put("fdAxpby", sy);
+  const Dense WT = fdTransposed(V0), Wp = fdPadRows(V0, (n0 + 1) / 2); // the x-line matrices
+  auto wt = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), WT);
+  auto wp = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), Wp);
+  double sw = double(wp.extent(0));
+  for (int r = 0; r < int(wp.extent(0)); ++r)
+    for (int q = 0; q < n0; ++q) sw += std::fabs(wp(r, q)) * (2 + r + 5 * q) + (r < n0 ? std::fabs(wt(r, q)) * (1 + r + 3 * q) : 0);
+  put("fdTransposedPadded", sw);
 }
 
 void elasticity(const Grid& g, Fields& f) {

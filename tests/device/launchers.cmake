@@ -10,8 +10,10 @@ endif()
 # bodies of launchers that are called (addNodeAdvectionFaces..., momentumStage1/2);
 # mirror*GhostsAxis: the per-axis bodies that mirror*Ghosts instantiates for all three axes;
 # reduce_rows, reduceRowsImpl: the row-wise reduction that kineticEnergy and solidMoments use.
+# fdLinePairs: host backends only (on a device the same passes run one by one); tested bit for
+# bit against them (tests/solvers, Poisson.FastDiagLinePairs).
 set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage flatSym mirrorNodeGhostsAxis
-    mirrorCellGhostsAxis reduce_rows reduceRowsImpl)
+    mirrorCellGhostsAxis reduce_rows reduceRowsImpl fdLinePairs)
 function(voigt_check_launchers mode)
   get_filename_component(_root "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../.." ABSOLUTE)
   file(GLOB _headers "${_root}/kernels/*.hpp")

@@ -3,6 +3,8 @@
 #include "poisson_fixture.hpp"
 #include "solvers/fast_diagonalization.hpp"
 
+#include <cstring> // memcmp
+
 using namespace voigt;
 using namespace voigt::ptest;
 
@@ -208,3 +210,62 @@ TEST(Poisson, FastDiagonalizationSolveAxis) {
     ++n;
   }
 }
+
+#if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
+// (f) The host backends' fused x pass (kernels/fd_xlines.hpp, fdLinePairs) is the separate
+// passes it replaces, bit for bit: forward [fdFold<0>] fdTransform<0> [fdFold<C>], back
+// [fdUnfold<C>] fdTransform<0, true> [fdUnfold<0>], for C = 1 and 2, every fold on or off,
+// odd and even extents (the middle lines), float and double. Equality, not a tolerance: the
+// same sums in the same order.
+template <class T>
+void linePairsCase(int n0, int n1, int n2) {
+  Grid3Of<T> in("in", n0, n1, n2), ref("ref", n0, n1, n2), tmp("tmp", n0, n1, n2), got("got", n0, n1, n2);
+  auto h = Kokkos::create_mirror_view(in);
+  unsigned s = 12345u + unsigned(n0 * 7 + n1 * 11 + n2 * 13);
+  for (size_t q = 0; q < h.size(); ++q) s = s * 1664525u + 1013904223u, h.data()[q] = T(int(s >> 9) % 2001 - 1000) / T(317);
+  Kokkos::deep_copy(in, h);
+  DenseOf<T> V("V", n0, n0);
+  auto vh = Kokkos::create_mirror_view(V);
+  for (int q = 0; q < n0; ++q)
+    for (int a = 0; a < n0; ++a) vh(q, a) = T(std::cos(0.37 * (q + 1) * (a + 2)));
+  Kokkos::deep_copy(V, vh);
+  auto same = [&](const char* what, int C, bool fx, bool fc) {
+    auto a = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ref);
+    auto b = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), got);
+    EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(T)))
+        << what << " n " << n0 << "x" << n1 << "x" << n2 << " C " << C << " foldX " << fx << " foldC " << fc;
+  };
+  for (int C : {1, 2})
+    for (bool fx : {false, true})
+      for (bool fc : {false, true}) {
+        const int nb = fx ? (n0 + 1) / 2 : n0;
+        const DenseOf<T> fw = fdPadRows(fdTransposed(V), nb), bw = fdPadRows(V, nb);
+        // forward
+        Grid3Of<T> x = in;
+        if (fx) fdFold<0>(x, tmp), x = tmp;
+        Grid3Of<T> y("y", n0, n1, n2);
+        fdTransform<0, false>(x, y, V, nb);
+        if (fc) (C == 1 ? fdFold<1, T> : fdFold<2, T>)(y, ref);
+        else Kokkos::deep_copy(ref, y);
+        (C == 1 ? fdLinePairs<1, false, T> : fdLinePairs<2, false, T>)(in, got, fw, nb, fx, fc);
+        Kokkos::fence();
+        same("forward", C, fx, fc);
+        // back
+        x = in;
+        if (fc) (C == 1 ? fdUnfold<1, T> : fdUnfold<2, T>)(x, tmp), x = tmp;
+        fdTransform<0, true>(x, y, V, nb);
+        if (fx) fdUnfold<0>(y, ref);
+        else Kokkos::deep_copy(ref, y);
+        (C == 1 ? fdLinePairs<1, true, T> : fdLinePairs<2, true, T>)(in, got, bw, nb, fx, fc);
+        Kokkos::fence();
+        same("back", C, fx, fc);
+      }
+}
+
+TEST(Poisson, FastDiagLinePairs) {
+  for (auto n : {std::array<int, 3>{9, 6, 7}, std::array<int, 3>{8, 7, 5}, std::array<int, 3>{17, 4, 4}}) {
+    linePairsCase<float>(n[0], n[1], n[2]);
+    linePairsCase<double>(n[0], n[1], n[2]);
+  }
+}
+#endif
