@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """What the outlet does in porous-bed runs: per field output, the fastest gas anywhere, the
-fastest at the outlet plane (y = 0.33 m) and the fraction of outlet nodes with backflow
+fastest at the outlet plane (y = 0.33 m) and the fraction of its free nodes with backflow
 (v_y < 0); per run, its steps and what the paper reports at its end (section gradient over
 y = 0.10-0.25 m, centroid rise). README.md, "The outlet". Python 3 + numpy + h5py.
 
@@ -10,7 +10,6 @@ The scene's outlet is p = 0 with a free velocity (`outflow`); the paper's "drawn
 at an equal mass flow rate" also reads as a prescribed uniform 0.1 m/s there:
     --set 'boundaries.y+={type: inflow, velocity: [0, 0.1, 0]}'
 """
-import glob
 import json
 import os
 import sys
@@ -20,13 +19,15 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import run_data  # noqa: E402
 from voigt_post import fields  # noqa: E402  (run_data put python/ on the path)
+from voigt_post.xdmf import frames  # noqa: E402
 
 
 def outlet_stats(u):
-    """(max |u|, max |u| on the last y plane, fraction of that plane with u_y < 0) of a node
-    velocity array stored (z, y, x, 3), components (x, y, z)."""
+    """(max |u|, max |u| on the last y plane, fraction of that plane's free nodes with u_y < 0)
+    of a node velocity array stored (z, y, x, 3), components (x, y, z). The plane's edge nodes
+    lie on the no-slip side walls (u = 0): not counted."""
     speed = np.sqrt((u ** 2).sum(axis=-1))
-    top = u[:, -1, :, :]
+    top = u[1:-1, -1, 1:-1, :]
     return float(speed.max()), float(speed[:, -1, :].max()), float((top[..., 1] < 0).mean())
 
 
@@ -36,7 +37,7 @@ def run_row(d):
         steps = json.load(f)["steps"]
     _, grad = r.section_gradient()
     t, cy = r.centroid()
-    per_output = [outlet_stats(fields.read(p, "velocity")) for p in sorted(glob.glob(os.path.join(d, "fields_*.h5")))]
+    per_output = [(f[0],) + outlet_stats(fields.read(f[1], "velocity")) for f in frames(d)]
     return steps, grad, 1e3 * (cy[-1] - cy[0]), per_output
 
 
@@ -47,8 +48,8 @@ def main():
         steps, grad, rise, per = run_row(d)
         print("%s: %d steps, section gradient %.1f Pa/m, centroid rise %.2f mm" % (os.path.basename(os.path.normpath(d)),
                                                                                    steps, grad, rise))
-        print("  per output: max |u| / outlet max |u| (m/s) / outlet backflow fraction")
-        print("  " + " ".join("%.1f/%.1f/%.2f" % s for s in per))
+        print("  per output: t (s): max |u| / outlet max |u| (m/s) / outlet backflow fraction")
+        print("  " + " ".join("%.2g: %.1f/%.1f/%.2f" % s for s in per))
 
 
 if __name__ == "__main__":
