@@ -25,29 +25,36 @@ using CGrid3 = CGrid3Of<double>;
 using Dense = DenseOf<double>;
 
 namespace fd_detail {
-// One x line (host backends use it): o[r] = sum_t W(r, t) x[t] over the blocks [0, nb), [nb, m) of W,
-// as an axpy over contiguous outputs, four columns a pass (the point-wise form is a dot
-// product, which the compiler may not reassociate).
+// One x line (host backends use it): o[r] = sum_t W(r, t) x[t] within W's two blocks, as an
+// axpy over contiguous outputs, four columns a pass (the point-wise form is a dot product,
+// which the compiler may not reassociate). Block 0 (columns [0, nb)) fills rows [0, b1),
+// block 1 (columns [nb, m)) rows [b1, e1): unpadded b1 = nb, e1 = m (lineTransform); padded,
+// each block's rows rounded up to whole vectors (lineTransformPadded).
 template <class T>
-KOKKOS_INLINE_FUNCTION void lineTransform(const DenseOf<T>& W, const T* x, T* o, int m, int nb) {
+KOKKOS_INLINE_FUNCTION void lineTransformRows(const DenseOf<T>& W, const T* x, T* o, int m, int nb, int b1, int e1) {
 #pragma GCC ivdep
-  for (int r = 0; r < m; ++r) o[r] = 0;
+  for (int r = 0; r < e1; ++r) o[r] = 0;
   for (int blk = 0; blk < 2; ++blk) {
-    const int tb = blk ? nb : 0, te = blk ? m : nb; // the rows of the same block
+    const int tb = blk ? nb : 0, te = blk ? m : nb; // W's columns of this block
+    const int rb = blk ? b1 : 0, re = blk ? e1 : b1; // its rows
     int t = tb;
     for (; t + 3 < te; t += 4) {
       const T w0 = x[t], w1 = x[t + 1], w2 = x[t + 2], w3 = x[t + 3];
       const T *c0 = &W(0, t), *c1 = &W(0, t + 1), *c2 = &W(0, t + 2), *c3 = &W(0, t + 3);
 #pragma GCC ivdep
-      for (int r = tb; r < te; ++r) o[r] += (c0[r] * w0 + c1[r] * w1) + (c2[r] * w2 + c3[r] * w3);
+      for (int r = rb; r < re; ++r) o[r] += (c0[r] * w0 + c1[r] * w1) + (c2[r] * w2 + c3[r] * w3);
     }
     for (; t < te; ++t) {
       const T w = x[t];
       const T* col = &W(0, t);
 #pragma GCC ivdep
-      for (int r = tb; r < te; ++r) o[r] += col[r] * w;
+      for (int r = rb; r < re; ++r) o[r] += col[r] * w;
     }
   }
+}
+template <class T>
+KOKKOS_INLINE_FUNCTION void lineTransform(const DenseOf<T>& W, const T* x, T* o, int m, int nb) {
+  lineTransformRows(W, x, o, m, nb, nb, m);
 }
 
 // lineTransform with W's two row blocks each padded with zero rows to a multiple of kLanes
@@ -59,26 +66,8 @@ constexpr int kLanes = 8;
 KOKKOS_INLINE_FUNCTION int padRows(int n) { return (n + kLanes - 1) / kLanes * kLanes; }
 template <class T>
 KOKKOS_INLINE_FUNCTION void lineTransformPadded(const DenseOf<T>& Wp, const T* x, T* o, int m, int nb) {
-  const int p0 = padRows(nb), p1 = padRows(m - nb);
-#pragma GCC ivdep
-  for (int r = 0; r < p0 + p1; ++r) o[r] = 0;
-  for (int blk = 0; blk < 2; ++blk) {
-    const int tb = blk ? nb : 0, te = blk ? m : nb;        // W's columns of this block
-    const int rb = blk ? p0 : 0, re = blk ? p0 + p1 : p0;  // its padded rows
-    int t = tb;
-    for (; t + 3 < te; t += 4) {
-      const T w0 = x[t], w1 = x[t + 1], w2 = x[t + 2], w3 = x[t + 3];
-      const T *c0 = &Wp(0, t), *c1 = &Wp(0, t + 1), *c2 = &Wp(0, t + 2), *c3 = &Wp(0, t + 3);
-#pragma GCC ivdep
-      for (int r = rb; r < re; ++r) o[r] += (c0[r] * w0 + c1[r] * w1) + (c2[r] * w2 + c3[r] * w3);
-    }
-    for (; t < te; ++t) {
-      const T w = x[t];
-      const T* col = &Wp(0, t);
-#pragma GCC ivdep
-      for (int r = rb; r < re; ++r) o[r] += col[r] * w;
-    }
-  }
+  const int p0 = padRows(nb);
+  lineTransformRows(Wp, x, o, m, nb, p0, p0 + padRows(m - nb));
 }
 // The real rows of a padded result: out[r] for r < m.
 template <class T>

@@ -50,8 +50,8 @@ struct ProjectedPrec final : Operator {
 // Y = alpha Z A0^+ Z X + beta Y, Z zeroing the identity rows (cells inside obstacles) on both
 // sides, so that it stays symmetric whatever X holds there.
 struct FastDiagPrec final : Operator {
-  FastDiagPrec(Teuchos::RCP<const Map> m, const FastDiagonalization* fd, RowFlags ident, int nrows)
-      : map(m), fd(fd), ident(ident), nrows(nrows) {}
+  FastDiagPrec(Teuchos::RCP<const Map> m, const FastDiagonalization* fd, RowFlags ident)
+      : map(m), fd(fd), ident(ident) {}
   Teuchos::RCP<const Map> getDomainMap() const override { return map; }
   Teuchos::RCP<const Map> getRangeMap() const override { return map; }
   void apply(const MV& X, MV& Y, Teuchos::ETransp, Scalar alpha, Scalar beta) const override {
@@ -64,7 +64,6 @@ struct FastDiagPrec final : Operator {
   Teuchos::RCP<const Map> map;
   const FastDiagonalization* fd;
   RowFlags ident;
-  int nrows;
 };
 
 // The exact operator without its matrix (kernels/poisson_apply.hpp): what CG multiplies by

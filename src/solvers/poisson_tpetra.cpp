@@ -325,7 +325,7 @@ class TpetraPoisson final : public PoissonSolver {
       problem_->setLeftPrec(Teuchos::rcp(new ProjectedPrec(ifpack_, ns_.get())));
     } else if (pc == "fast_diagonalization") {
       problem_->setLeftPrec(
-          Teuchos::rcp(new ProjectedPrec(Teuchos::rcp(new FastDiagPrec(map_, fd_.get(), ident_, nrows_)), ns_.get())));
+          Teuchos::rcp(new ProjectedPrec(Teuchos::rcp(new FastDiagPrec(map_, fd_.get(), ident_)), ns_.get())));
     } else if (pc != "none" && pc != "multigrid") {
       throw std::invalid_argument("projection.preconditioner: unknown '" + pc +
                                   "' (sgs | jacobi | none | multigrid | fast_diagonalization)");
