@@ -234,8 +234,9 @@ def unfinished(row):
     finishing would cost (the cases' table.py quote it)."""
     if not row.get("t_reached"):
         return "*not finished*: %s, no checkpoint yet" % row["state"]
-    return "*not finished*: %s at t = %s s (%s steps, %s s)%s" % (
-        row["state"], row["t_reached"], row["steps"], row["wall_s"],
+    # A first segment still running has no wall time recorded yet: say nothing of it.
+    return "*not finished*: %s at t = %s s (%s steps%s)%s" % (
+        row["state"], row["t_reached"], row["steps"], ", %s s" % row["wall_s"] if row.get("wall_s") else "",
         "; to finish ~%s s" % row["to_finish_s"] if row.get("to_finish_s") else "")
 
 

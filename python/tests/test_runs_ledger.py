@@ -20,6 +20,15 @@ class Ledger(unittest.TestCase):
     def tearDown(self):
         self.dir.cleanup()
 
+    def test_unfinished_in_words(self):
+        row = {"state": "wall_limit", "t_reached": "0.62", "steps": "6388", "wall_s": "2932.2", "to_finish_s": "1404"}
+        self.assertEqual(runs.unfinished(row),
+                         "*not finished*: wall_limit at t = 0.62 s (6388 steps, 2932.2 s); to finish ~1404 s")
+        # A first segment still running: no wall time yet, and no empty "s" in its place.
+        row = {"state": "running", "t_reached": "0.1", "steps": "1200", "wall_s": "", "to_finish_s": ""}
+        self.assertEqual(runs.unfinished(row), "*not finished*: running at t = 0.1 s (1200 steps)")
+        self.assertEqual(runs.unfinished({"state": "running", "t_reached": ""}), "*not finished*: running, no checkpoint yet")
+
     def test_recorded_state_survives_without_outputs(self):
         self.assertEqual(runs.recorded(self.ledger, "a"), "")  # no ledger yet
         runs.update(self.ledger, "a", {"modulus": "1000", "state": "running"})
