@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Where the porous bed's gas is fast, and what pushes it: speeds and pressure accelerations
-binned by the signed distance to the solid surface, in cells (README.md, "Why the time step
+binned by the signed distance to the solid surface, in cells (NOTEBOOK.md, "Why the time step
 falls"). Python 3 + numpy + h5py (Debian python3-*).
 
     cases/porous_bed/band_speeds.py FILE [--packing cases/porous_bed/packing.csv]

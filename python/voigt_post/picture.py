@@ -8,7 +8,7 @@ command re-runs itself under xvfb-run).
 
 Colour: `--field` (default log10_S2 when the output has it, else none) sampled one cell on the
 psi > 0 side of the surface (along grad psi): for a solid phase the band's fluid side can carry
-stress integrated from the surrounding flow (cases/falling_block/README.md), which would
+stress integrated from the surrounding flow (cases/falling_block/NOTEBOOK.md), which would
 otherwise colour the surface. The frame nearest each requested time is drawn. A run may be
 its digest (digest.py), which keeps psi and the colour around the surface at a few times.
 """

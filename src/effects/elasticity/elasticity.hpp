@@ -34,7 +34,7 @@
 //   blend: as extend, but Eq. (13) runs on the blend zone (psi > -kappa, Eq. 15
 //     exact there) and only psi <= -kappa is extended. No source; dissipative
 //     (free oscillation -40 %, impact keeps 0.5).
-//   Measurements: cases/falling_block/README.md "Stress on the fluid side".
+//   Measurements: cases/falling_block/NOTEBOOK.md "Stress on the fluid side".
 // Stress kernels run on a packed list of cells with psi > -(kappa + band h):
 // cells far from any solid cost nothing; tau_S is zero outside the band.
 // One file per stage: elasticity.cpp (scene, fields, set-up, dt, summary),
