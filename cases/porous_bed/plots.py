@@ -46,7 +46,7 @@ def results_row(run, summ, t, mean, section, rise):
         "midline_t": "%.4f" % t,
         "mean_gradient": "%.1f" % mean,
         "section_gradient": "%.1f" % section,
-        "centroid_rise_mm": "%.2f" % rise,
+        "centroid_rise_mm": "" if rise is None else "%.2f" % rise,
         # What the global correction holds (INT H) and the sharp volume (psi > 0), in per cent.
         "volume_change_pct": series.fmt(100 * ls["volume_drift"] if "volume_drift" in ls else None, "%.2f"),
         "sharp_volume_change_pct": series.fmt(100 * (ls["sharp_volume"] / sharp0 - 1) if sharp0 else None, "%.2f"),
@@ -131,6 +131,12 @@ def main():
         rigid = (t_r, float(np.mean(gr_r[(y_r >= Y0) & (y_r <= Y1)]))) + rr.section_gradient()
         ax6.axhline(rigid[1], ls="-.", color="C4", label="rigid bed (fixed spheres), t = %.3g s: %.1f Pa/m" % rigid[:2])
         ax6.axhline(rigid[3], ls=":", color="C4", label="rigid bed, section-averaged: %.1f Pa/m" % rigid[3])
+        summ = rr.summary()
+        if a.csv and a.time is None and series.finished(summ):  # its row: model "rigid", no modulus
+            results.append(dict(results_row(rr, summ, t_r, rigid[1], rigid[3], None), model="rigid"))
+        if a.digests and a.time is None and isinstance(rr, RunDir) and series.finished(summ):
+            os.makedirs(a.digests, exist_ok=True)
+            write_digest(rr, os.path.join(a.digests, rr.run_id + ".npz"))
     ax6.set_xlabel("mu_S (Pa)")
     ax6.set_ylabel("mean -dp/dy over y = 0.10-0.25 m (Pa/m)")
     ax6.set_title("Fig. 6: gradient against shear modulus" + sfx, fontsize=9)

@@ -113,14 +113,16 @@ def write_digest(run, path):
     """The numbers plots.py draws from `run` (a RunDir at its end) into `path` (.npz). Slices in
     float32 (a figure's colour scale); the midline, gradients and centroid in double."""
     mt, my, mp = run.midline()
-    ct, cy = run.centroid()
-    keep = np.unique(np.linspace(0, len(ct) - 1, min(len(ct), MAX_SERIES)).astype(int))
     st, sg = run.section_gradient()
-    sp, sl = run.slices()
+    z = dict(run_id=run.run_id, summary=json.dumps(run.summary()), midline_t=mt, midline_y=my, midline_p=mp,
+             section_t=st, section_gradient=sg)
+    if "elasticity" in run.summary():  # a bed (rigid_bed.py's fixed spheres have no centroid, no psi)
+        ct, cy = run.centroid()
+        keep = np.unique(np.linspace(0, len(ct) - 1, min(len(ct), MAX_SERIES)).astype(int))
+        sp, sl = run.slices()
+        z.update(centroid_t=ct[keep], centroid_cy=cy[keep], spacing=np.array(sp),
+                 slice_t=np.array([q[0] for q in sl]), slice_p=np.array([q[1] for q in sl], dtype=np.float32),
+                 slice_psi=np.array([q[2] for q in sl], dtype=np.float32))
     tmp = path + ".tmp.npz"
-    np.savez_compressed(tmp, run_id=run.run_id, summary=json.dumps(run.summary()), midline_t=mt, midline_y=my,
-                        midline_p=mp, centroid_t=ct[keep], centroid_cy=cy[keep], section_t=st, section_gradient=sg,
-                        spacing=np.array(sp), slice_t=np.array([q[0] for q in sl]),
-                        slice_p=np.array([q[1] for q in sl], dtype=np.float32),
-                        slice_psi=np.array([q[2] for q in sl], dtype=np.float32))
+    np.savez_compressed(tmp, **z)
     os.replace(tmp, path)

@@ -80,6 +80,8 @@ class PorousTableTest(unittest.TestCase):
                      "wall_s": "9999", "section_gradient": "%.1f" % (0.1 * mu + 50), "mean_gradient": "1.0",
                      "centroid_rise_mm": "1.00", "sharp_volume_change_pct": "1.20"} for mu in (100, 250, 1000)]
             rows.append(dict(rows[0], run_id="mu500_extend+global+exact_50x150x50", t_end="0.5000"))  # not at 1 s
+            # The rigid bed on the approximate projection only: quoted, and said to be that projection.
+            rows.append(dict(rows[0], run_id="rigid_50x150x50", section_gradient="18.0", mean_gradient="38.2"))
             write(res, *rows)
             write(led, dict(LEDGER, run_id="mu500_extend+global+exact_50x150x50"))
             out = subprocess.run([sys.executable, os.path.join(CASES, "porous_bed", "table.py"), "--results", res,
@@ -89,6 +91,8 @@ class PorousTableTest(unittest.TestCase):
             self.assertIn("*not run* | 150.0 Pa/m |", out)           # 750 Pa: in neither file
             self.assertIn("section-averaged gradient against mu_S (3 finished moduli", out)
             self.assertIn("0.1 Pa/m per Pa, intercept 50 Pa/m, R^2 = 1.000", out)
+            self.assertIn("results.csv `rigid_50x150x50`, approximate projection, to t = 1 s): section-averaged "
+                          "18.0 Pa/m, midline 38.2 Pa/m (9000 steps, 9999 s)", out)
 
     def test_grid_cost_pairs_the_grids(self):
         # grid_cost.py: a modulus's finished runs on the two grids, of one model and tag only.
