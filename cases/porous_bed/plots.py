@@ -53,6 +53,17 @@ def results_row(run, summ, t, mean, section, rise):
     })
 
 
+def digest(run, folder):
+    """A finished run's digest, unless one newer than its summary.json is there already (a
+    rewrite of the same numbers would still change the file: the .npz holds time stamps)."""
+    path = os.path.join(folder, run.run_id + ".npz")
+    summ = os.path.join(run.d, "summary.json")
+    if os.path.exists(path) and os.path.getmtime(path) >= os.path.getmtime(summ):
+        return
+    os.makedirs(folder, exist_ok=True)
+    write_digest(run, path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--run", nargs=2, action="append", metavar=("DIR", "MU_S"), required=True)
@@ -91,8 +102,7 @@ def main():
         if a.csv and a.time is None and series.finished(summ):
             results.append(results_row(d, summ, t, mean, sec, rows[-1][-1]))
         if a.digests and a.time is None and isinstance(d, RunDir) and series.finished(summ):
-            os.makedirs(a.digests, exist_ok=True)
-            write_digest(d, os.path.join(a.digests, d.run_id + ".npz"))
+            digest(d, a.digests)
     for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),
                              (ax5, f5, "-dp/dy (Pa/m); dashed: mean over 0.10-0.25 m", "gradient_midline.png")):
         ax.set_xlabel("y (m), midline x = z = 5.5 cm")
@@ -135,8 +145,7 @@ def main():
         if a.csv and a.time is None and series.finished(summ):  # its row: model "rigid", no modulus
             results.append(dict(results_row(rr, summ, t_r, rigid[1], rigid[3], None), model="rigid"))
         if a.digests and a.time is None and isinstance(rr, RunDir) and series.finished(summ):
-            os.makedirs(a.digests, exist_ok=True)
-            write_digest(rr, os.path.join(a.digests, rr.run_id + ".npz"))
+            digest(rr, a.digests)
     ax6.set_xlabel("mu_S (Pa)")
     ax6.set_ylabel("mean -dp/dy over y = 0.10-0.25 m (Pa/m)")
     ax6.set_title("Fig. 6: gradient against shear modulus" + sfx, fontsize=9)
