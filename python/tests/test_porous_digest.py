@@ -1,6 +1,7 @@
 """cases/porous_bed/run_data.py: a run's digest gives plots.py the same numbers as its folder
 (Figs. 4-6, the table and results.csv row), so figures outlive the machine a run was on.
-Two 10 x 30 x 10 runs of the porous bed to t = 0.03 s (about 1 s each). VOIGT names the binary."""
+Two 10 x 30 x 10 runs of the porous bed and one of its rigid bed to t = 0.03 s (about 1 s each).
+VOIGT names the binary."""
 import os
 import subprocess
 import sys
@@ -32,6 +33,13 @@ class Digest(unittest.TestCase):
                             "--set", "probes.0.interval=0.01", "--set", "materials.bed.shear_modulus=%d" % mu],
                            check=True, capture_output=True)
             cls.runs.append((mu, d))
+        # The rigid bed (rigid_bed.py: the spheres as fixed obstacles, no level set) on the same grid.
+        scene = os.path.join(cls.tmp.name, "rigid.yaml")
+        with open(scene, "w") as f:
+            subprocess.run([sys.executable, os.path.join(CASE, "rigid_bed.py"), "--approximate"], check=True, stdout=f)
+        cls.rigid = os.path.join(cls.tmp.name, "rigid_10x30x10")
+        subprocess.run([voigt, "run", scene, "-o", cls.rigid, "--end-time", "0.03", "--set", "domain.cells=[10,30,10]",
+                        "--set", "output.interval=0.01", "--set", "probes.0.interval=0.01"], check=True, capture_output=True)
 
     @classmethod
     def tearDownClass(cls):
@@ -63,6 +71,27 @@ class Digest(unittest.TestCase):
             self.assertEqual(ta, tb)
             np.testing.assert_allclose(pb, pa, rtol=1e-6, atol=1e-6 * np.abs(pa).max())
             np.testing.assert_allclose(sb, sa, rtol=1e-6, atol=1e-6 * np.abs(sa).max())
+
+    def test_rigid_bed_row_and_digest(self):
+        # plots.py --rigid: the rigid run's results.csv row (model "rigid", no modulus, no centroid)
+        # and its digest (midline and section only), which gives the same printed numbers; a second
+        # call leaves the digests as they are (an .npz rewritten would differ by its time stamps).
+        dig = os.path.join(self.tmp.name, "rigid_digests")
+        text_dir, csv_dir = self.plots("rigid_dirs", self.runs[:1], ["--rigid", self.rigid, "--digests", dig])
+        rows = {r.split(",")[0]: r.split(",") for r in csv_dir.splitlines()}
+        head = rows["run_id"]
+        rigid = dict(zip(head, rows["rigid_10x30x10"]))
+        self.assertEqual((rigid["model"], rigid["mu_S"], rigid["centroid_rise_mm"]), ("rigid", "", ""))
+        path = os.path.join(dig, "rigid_10x30x10.npz")
+        z = np.load(path)
+        self.assertNotIn("centroid_cy", z.files)
+        stamps = {n: os.path.getmtime(os.path.join(dig, n)) for n in os.listdir(dig)}
+        self.plots("rigid_again", self.runs[:1], ["--rigid", self.rigid, "--digests", dig])
+        self.assertEqual(stamps, {n: os.path.getmtime(os.path.join(dig, n)) for n in os.listdir(dig)})
+        text_dig, _ = self.plots("rigid_digest", self.runs[:1], ["--rigid", path])
+        line = [x for x in text_dir.splitlines() if x.startswith("rigid bed")]
+        self.assertEqual(len(line), 1)
+        self.assertIn(line[0], text_dig)
 
     def test_digest_refuses_a_time(self):
         d = os.path.join(self.tmp.name, "x.npz")
