@@ -34,11 +34,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))  # run_data
-from run_data import G, RHO, RunDir, Y0, Y1, ergun, load, write_digest  # noqa: E402
+from run_data import G, RHO, RunDir, Y0, Y1, ergun, load, peak_rise, write_digest  # noqa: E402
 from voigt_post import series  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-def results_row(run, summ, t, mean, section, rise):
+def results_row(run, summ, t, mean, section, rise, peak=None):
     """Issue 22's porous-bed table: one finished run (a run_data source and its summary.json)."""
     ls = summ.get("level_set", {})
     sharp0 = ls.get("sharp_volume_initial")
@@ -47,6 +47,9 @@ def results_row(run, summ, t, mean, section, rise):
         "mean_gradient": "%.1f" % mean,
         "section_gradient": "%.1f" % section,
         "centroid_rise_mm": "" if rise is None else "%.2f" % rise,
+        # The paper's "the bed deforms about 10 mm vertically": the largest rise, and when.
+        "peak_rise_mm": "" if peak is None else "%.2f" % peak[0],
+        "peak_rise_s": "" if peak is None else "%.3f" % peak[1],
         # What the global correction holds (INT H) and the sharp volume (psi > 0), in per cent.
         "volume_change_pct": series.fmt(100 * ls["volume_drift"] if "volume_drift" in ls else None, "%.2f"),
         "sharp_volume_change_pct": series.fmt(100 * (ls["sharp_volume"] / sharp0 - 1) if sharp0 else None, "%.2f"),
@@ -100,7 +103,7 @@ def main():
         rows.append((mu, t, mean, mean - RHO * G, ts, sec, 1000 * (cy[k] - cy[0])))
         summ = d.summary()
         if a.csv and a.time is None and series.finished(summ):
-            results.append(results_row(d, summ, t, mean, sec, rows[-1][-1]))
+            results.append(results_row(d, summ, t, mean, sec, rows[-1][-1], peak_rise(tt, cy)))
         if a.digests and a.time is None and isinstance(d, RunDir) and series.finished(summ):
             digest(d, a.digests)
     for ax, f, lab, name in ((ax4, f4, "pressure (Pa)", "pressure_midline.png"),

@@ -109,6 +109,19 @@ def load(path, at=None):
     return RunDir(path, at)
 
 
+def thin(n):
+    """Indices of the n centroid samples a digest keeps: all of them up to MAX_SERIES, else that many
+    evenly spread (thin(len) of a digest's series keeps it whole, so a run and its digest agree)."""
+    return np.unique(np.linspace(0, n - 1, min(n, MAX_SERIES)).astype(int))
+
+
+def peak_rise(t, cy):
+    """(largest rise of the centroid above its start in mm, its time) over the kept samples."""
+    keep = thin(len(t))
+    j = keep[int(np.argmax(cy[keep]))]
+    return 1000 * (cy[j] - cy[0]), t[j]
+
+
 def write_digest(run, path):
     """The numbers plots.py draws from `run` (a RunDir at its end) into `path` (.npz). Slices in
     float32 (a figure's colour scale); the midline, gradients and centroid in double."""
@@ -118,7 +131,7 @@ def write_digest(run, path):
              section_t=st, section_gradient=sg)
     if "elasticity" in run.summary():  # a bed (rigid_bed.py's fixed spheres have no centroid, no psi)
         ct, cy = run.centroid()
-        keep = np.unique(np.linspace(0, len(ct) - 1, min(len(ct), MAX_SERIES)).astype(int))
+        keep = thin(len(ct))
         sp, sl = run.slices()
         z.update(centroid_t=ct[keep], centroid_cy=cy[keep], spacing=np.array(sp),
                  slice_t=np.array([q[0] for q in sl]), slice_p=np.array([q[1] for q in sl], dtype=np.float32),

@@ -49,6 +49,8 @@ QUANTITIES = [  # (name, paper, results.csv column, unit)
     ("section-averaged -dp/dy, y = 0.10-0.25 m", "O(1000) Pa/m", "section_gradient", " Pa/m"),
     ("-dp/dy on the midline, y = 0.10-0.25 m", "O(1000) Pa/m", "mean_gradient", " Pa/m"),
     ("centroid rise at the end", "~10 mm, nearly the same for all mu_S", "centroid_rise_mm", " mm"),
+    ("largest centroid rise", "(deforms ~10 mm; when, not said)", "peak_rise_mm", " mm"),
+    ("time of the largest rise", "-", "peak_rise_s", " s"),
     ("bed volume (psi > 0) change", "not reported", "sharp_volume_change_pct", " %"),
     ("steps to t = 1 s", "-", "steps", ""),
     ("wall time", "-", "wall_s", " s"),
