@@ -123,7 +123,7 @@ def main():
     for vals, mark, ls, name in ((grads, "o", "k-", "midline"), (secs, "s", "k--", "section-averaged")):
         vals = np.array(vals)
         ax6.plot(mus, vals, mark, label="Voigt, " + name)
-        if len(mus) >= 2:
+        if len(mus) >= 3:  # two points always lie on a line
             slope, icpt = np.polyfit(mus, vals, 1)
             pred = slope * mus + icpt
             ss = np.sum((vals - vals.mean()) ** 2)

@@ -30,9 +30,10 @@ def ergun(e, rho=1.0, mu=1e-5, u=0.1, d=0.025):
 
 
 def fit(xs, ys):
-    """Least-squares line: (slope, intercept, R^2), or None for fewer than two points."""
+    """Least-squares line: (slope, intercept, R^2), or None for fewer than three points (two
+    always lie on a line: R^2 = 1 would say nothing)."""
     n = len(xs)
-    if n < 2:
+    if n < 3:
         return None
     mx, my = sum(xs) / n, sum(ys) / n
     sxx = sum((x - mx) ** 2 for x in xs)
@@ -80,7 +81,7 @@ def table(results, ledger, model, tag, grid, packing):
         f = fit(mus, [float(done[mu][key]) for mu in mus])
         notes.append("- Linear fit of the %s gradient against mu_S (%d finished moduli; paper: exactly linear, "
                      "slope ~1 Pa/m per Pa, intercept O(10) Pa/m): %s" % (
-                         what, len(mus), "-" if f is None else "%.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.3f" % f))
+                         what, len(mus), "- (needs three)" if f is None else "%.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.3f" % f))
     notes.append(rigid_note(results, tag, grid))
     if packing:
         e1, e2 = packing["interior"], packing["interior_flow_region"]

@@ -71,7 +71,7 @@ class PorousTableTest(unittest.TestCase):
         self.assertAlmostEqual(slope, 0.1, places=12)
         self.assertAlmostEqual(icpt, 50.0, places=10)
         self.assertAlmostEqual(r2, 1.0, places=12)
-        self.assertIsNone(table.fit([100], [1.0]))
+        self.assertIsNone(table.fit([100, 250], [1.0, 2.0]))   # two points: no fit worth the name
         # Ergun at e = 0.4 (Eq. 23 by hand: 0.6 / 0.064 * 0.01 / 0.025 * (150 * 0.6 * 1e-5 / 2.5e-3 + 1.75) = 7.91 Pa/m)
         self.assertAlmostEqual(table.ergun(0.4), 0.6 / 0.064 * 0.4 * (0.36 + 1.75), places=10)
         with tempfile.TemporaryDirectory() as tmp:
