@@ -127,9 +127,10 @@ def write_digest(run, path):
     float32 (a figure's colour scale); the midline, gradients and centroid in double."""
     mt, my, mp = run.midline()
     st, sg = run.section_gradient()
-    z = dict(run_id=run.run_id, summary=json.dumps(run.summary()), midline_t=mt, midline_y=my, midline_p=mp,
+    summ = run.summary()
+    z = dict(run_id=run.run_id, summary=json.dumps(summ), midline_t=mt, midline_y=my, midline_p=mp,
              section_t=st, section_gradient=sg)
-    if "elasticity" in run.summary():  # a bed (rigid_bed.py's fixed spheres have no centroid, no psi)
+    if "elasticity" in summ:  # a bed (rigid_bed.py's fixed spheres have no centroid, no psi)
         ct, cy = run.centroid()
         keep = thin(len(ct))
         sp, sl = run.slices()
