@@ -117,6 +117,52 @@ inline void addBodyForce(const VecField& rhs, double g0, double g1, double g2, R
   });
 }
 
+// One value per column of cells along an axis (the owned cells of the other two axes).
+using Plane = Kokkos::View<double**, Kokkos::LayoutLeft, MemSpace>;
+
+// Balanced gravity (effects/gravity.cpp): the hydrostatic pressure of the cell density
+// along axis a, integrated from the top (the end that g_a points away from) down, one
+// sequential loop per column, s = |g_a| h_a:
+//   p_h(top) = s rho(top) / 2                          at the domain's top (p = 0 on that face)
+//   p_h(top) = top + s (rho(top) + rho(above)) / 2     below another rank (top: its last p_h)
+//   p_h(c)   = p_h(above) + s (rho(c) + rho(above)) / 2
+// so that nodeGradient's G p_h equals nodeMean's rho_n times g_a (to round-off) wherever rho
+// varies only along a, at walls and outflow faces too (projection_ops.hpp). Then
+// p += p_h - ph and ph = p_h: the stored pressure keeps its hydrostatic part current and
+// the solve finds only the departure from it. last receives the bottom layer's p_h.
+inline void hydrostaticShift(const Grid& g, int a, double ga, const Field& rho, const Field& ph, const Field& p,
+                             const Plane& top, bool atTop, const Plane& last) {
+  const int b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2, ng = g.ng, n = g.ln[a];
+  const bool down = ga < 0; // the top is the high end
+  const double s = (ga < 0 ? -ga : ga) * g.h[a];
+  using P2 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Left, Kokkos::Iterate::Left>>;
+  Kokkos::parallel_for(
+      "hydrostatic_shift", P2({0, 0}, {g.ln[b], g.ln[c]}), KOKKOS_LAMBDA(int qb, int qc) {
+        int ix[3];
+        ix[b] = qb + ng;
+        ix[c] = qc + ng;
+        const int step = down ? -1 : 1;
+        int j = down ? ng + n - 1 : ng;
+        ix[a] = j - step;
+        double rAbove = rho(ix[0], ix[1], ix[2]);
+        ix[a] = j;
+        double r = rho(ix[0], ix[1], ix[2]);
+        double v = atTop ? 0.5 * s * r : top(qb, qc) + 0.5 * s * (r + rAbove);
+        for (int m = 0; m < n; ++m) {
+          if (m > 0) {
+            rAbove = r;
+            ix[a] = j;
+            r = rho(ix[0], ix[1], ix[2]);
+            v = v + 0.5 * s * (r + rAbove);
+          }
+          p(ix[0], ix[1], ix[2]) += v - ph(ix[0], ix[1], ix[2]);
+          ph(ix[0], ix[1], ix[2]) = v;
+          j += step;
+        }
+        last(qb, qc) = v;
+      });
+}
+
 // Initial pressure (momentum.cpp): the velocity rate of the conservative form,
 // acc -= u rr / r0, and zero acceleration at prescribed components.
 inline void initialVelocityRate(const VecField& acc, const VecField& u, const Field& rr, const Field& r0,

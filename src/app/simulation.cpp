@@ -83,6 +83,12 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunOptions opt)
   engine_.addAfterStep([](State& st) {
     if (st.fields.allocated(field::density)) // kinematic scenes (prescribed_flow) carry no mass
       st.diag["kinetic_energy"] = kineticEnergy(st.grid, st.fields.vector(field::velocity), st.fields.scalar(field::density));
+    const VecField u = st.fields.vector(field::velocity);
+    const Range3 nodes = nodeRange(st.grid);
+    const double m = std::max({localMaxAbs(u.c[0], nodes), localMaxAbs(u.c[1], nodes), localMaxAbs(u.c[2], nodes)});
+    double mg = m;
+    MPI_Allreduce(&m, &mg, 1, MPI_DOUBLE, MPI_MAX, st.grid.comm);
+    st.diag["max_velocity"] = mg; // largest |u_d|: what rest-at-rest is judged by
   });
   const Section c = topSection(scene_, "checkpoint");
   ck_.interval = c.integer("interval", ck_.interval, 0, 1000000000L);

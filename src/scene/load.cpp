@@ -281,6 +281,7 @@ void readSettings(const Section& top, Scene& sc) {
   P.initialGuess = p.choice("initial_guess", fd ? "extrapolate" : "previous",
                             {"previous", "extrapolate"});
   P.matrixFree = p.boolean("matrix_free", P.matrixFree);
+  P.hydrostatic = p.choice("hydrostatic", P.hydrostatic, {"balanced", "none"});
   p.finish();
 
   Section a = top.section("advection");

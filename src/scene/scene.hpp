@@ -106,6 +106,10 @@ struct ProjectionCfg {
   // bytes a cell against ~330 for the 27-point CSR product), or by the CSR matrix (false).
   // The same operator up to round-off (perf/README.md, "The exact operator without its matrix").
   bool matrixFree = true;
+  // balanced: with gravity, the stored pressure carries the discrete hydrostatic pressure of
+  // the current density, so rest is a fixed point at any tolerance and the solve finds only
+  // the departure from hydrostatics (effects/gravity.cpp); none: gravity as a plain body force.
+  std::string hydrostatic = "balanced";
 };
 
 struct AdvectionCfg {

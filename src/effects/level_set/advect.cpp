@@ -29,6 +29,7 @@ void LevelSet::advect(State& st) {
     advanceCellAdvection(g, psi, old, cells, limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
   }
   refreshGhosts(st, psi);
+  blend(st); // the momentum stage sees rho^{n+1}, mu^{n+1}
 }
 
 void LevelSet::blend(State& st) {

@@ -69,8 +69,7 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   // Declared only with the conservative form.
   const Field r0 = conservative_ ? st.fields.scalar("momentum_density") : Field();
   const Field rr = conservative_ ? st.fields.scalar("momentum_density_rhs") : Field();
-  if (conservative_) { // du/dt = (dm/dt - u dr/dt) / r0
-    nodeDensity(st);
+  if (conservative_) { // du/dt = (dm/dt - u dr/dt) / r0, r0 = rho^0 (Properties stage)
     evaluateRhs(st, p, u, acc, &r0);
   } else {
     evaluateRhs(st, p, u, acc);
@@ -122,8 +121,7 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
     st.velocityHalosCurrent = false;
     return;
   }
-  // Conservative form (header).
-  nodeDensity(st);
+  // Conservative form (header); r0 = rho^n from the Properties stage.
   Field r0 = st.fields.scalar("momentum_density"), r1 = st.fields.scalar("momentum_density_stage");
   Field rr = st.fields.scalar("momentum_density_rhs");
   evaluateRhs(st, p, u, rhs, &r0);

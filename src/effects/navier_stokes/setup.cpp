@@ -108,7 +108,10 @@ void NavierStokes::registerTasks(Pipeline& p) {
   p.add(Stage::Momentum, name(),
         std::string("SSP-RK2 predictor: MUSCL advection (") + (conservative_ ? "conservative rho u" : "velocity form") +
             ") + stress + forces - grad p^n",
-        [this](State& st) { momentum(st, *pipeline_); });
+        [this](State& st) { momentum(st, *pipeline_); }, {"gravity"}); // after the hydrostatic shift of p
+  if (conservative_)
+    p.add(Stage::Properties, name(), "node density rho^n for the conservative momentum advection",
+          [this](State& st) { nodeDensity(st); }, {"level_set"});
   p.add(Stage::Stress, name(), "viscous stress mu D at cells (Eq. 10)", [](State& st) {
     viscousStress(st.grid, st.evalU, st.fields.scalar(field::viscosity), stressField(st.fields),
                   cellRange(st.grid, 1));
