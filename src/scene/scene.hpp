@@ -109,6 +109,7 @@ struct ProjectionCfg {
   // balanced: with gravity, the stored pressure carries the discrete hydrostatic pressure of
   // the current density, so rest is a fixed point at any tolerance and the solve finds only
   // the departure from hydrostatics (effects/gravity.cpp); none: gravity as a plain body force.
+  // Default: balanced with the exact operator, none with the approximate one (scene/load.cpp).
   std::string hydrostatic = "balanced";
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 // The stability matrix's runner (test_matrix.cpp): energy and amplitude
 // measures, the step loop with its per-step records, the table row and the
-// common assertions. Included by test_matrix.cpp only.
+// common assertions. Included by test_matrix.cpp and test_matrix_rest.cpp.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -50,7 +50,7 @@ std::vector<std::string> envOverrides(const std::string& yaml) {
 enum class Energy { Unforced, Gravity, Forced, Amplitude };
 
 struct Series {
-  std::vector<double> t, dt, E, Emech, drift, div, divPred, elastic;
+  std::vector<double> t, dt, E, Emech, drift, div, divPred, elastic, speed; // speed: max_d |u_d| over nodes
   std::vector<double> amp; // sqrt(sum |tau_S|_F^2 / sum tau_zz^2) over cells (rotation cases)
   std::vector<std::string> reason;
 };
@@ -175,7 +175,10 @@ Result runCase(const std::string& name, const std::string& gridText, const std::
     r.reasons[reason] += 1;
     if (st.fields.allocated("velocity")) {
       const VecField u = st.fields.vector("velocity");
-      for (int d = 0; d < 3; ++d) r.maxSpeed = std::max(r.maxSpeed, globalMaxAbs(g, u.c[d], nodeRange(g)));
+      double sp = 0;
+      for (int d = 0; d < 3; ++d) sp = std::max(sp, globalMaxAbs(g, u.c[d], nodeRange(g)));
+      r.s.speed.push_back(sp);
+      r.maxSpeed = std::max(r.maxSpeed, sp);
     }
     r.maxDrift = std::max(r.maxDrift, std::abs(diagOr(st, "volume_drift")));
     r.corrected = diagOr(st, "volume_corrected"); // cumulative: the last value is the largest

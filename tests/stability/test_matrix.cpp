@@ -33,23 +33,22 @@
 
 
 // ---------------------------------------------------------------------------
-// Scenes. Unit cube (or as stated), no-slip walls unless stated, exact
-// projection operator at CG tolerance 1e-8, cfl 0.5.
+// Scenes. Unit cube (or as stated), no-slip walls unless stated, the defaults
+// (adaptive dt at cfl 0.5, exact projection at its default tolerance).
 namespace {
 
 struct Grid3 {
   int nx, ny, nz;
 };
 
-std::string header(const char* name, double lx, double ly, double lz, Grid3 n, const std::string& bc,
-                   double maxDt) {
+// The defaults a user gets: adaptive dt, no projection section (issue 50).
+std::string header(const char* name, double lx, double ly, double lz, Grid3 n, const std::string& bc) {
   return fmt("name: %s\n"
              "domain: {lo: [0, 0, 0], hi: [%g, %g, %g], cells: [%d, %d, %d]}\n"
              "boundaries: %s\n"
-             "time: {end: 1.0e9, cfl: 0.5, max_dt: %g}\n"
-             "projection: {operator: exact, tolerance: 1.0e-8, max_iterations: 5000}\n"
+             "time: {end: 1.0e9}\n"
              "output: {enabled: false}\n",
-             name, lx, ly, lz, n.nx, n.ny, n.nz, bc.c_str(), maxDt);
+             name, lx, ly, lz, n.nx, n.ny, n.nz, bc.c_str());
 }
 
 const char* kWalls = "{default: {type: no_slip}}";
@@ -57,7 +56,7 @@ const char* kWalls = "{default: {type: no_slip}}";
 // Ratio-1000 two-phase: a water drop falling through air, or an air bubble rising in water.
 std::string twoPhase(bool heavyDrop, Grid3 n) {
   const double lx = 1, ly = 1, lz = 1, R = 0.2;
-  std::string s = header(heavyDrop ? "drop" : "bubble", lx, ly, lz, n, kWalls, 0.01);
+  std::string s = header(heavyDrop ? "drop" : "bubble", lx, ly, lz, n, kWalls);
   s += "materials: {water: {density: 1000, viscosity: 1.0e-3}, air: {density: 1, viscosity: 1.8e-5}}\n";
   s += heavyDrop ? "fluid: air\n" : "fluid: water\n";
   s += "gravity: [0, -9.81, 0]\n"
@@ -101,8 +100,8 @@ namespace {
 
 // An elastic solid (density rhoS, shear modulus mu) in water under gravity.
 std::string solidScene(const char* name, Grid3 n, double lx, double ly, double lz, double rhoS, double mu,
-                       double rhoF, double nuF, const std::string& shape, double maxDt = 0.01) {
-  std::string s = header(name, lx, ly, lz, n, kWalls, maxDt);
+                       double rhoF, double nuF, const std::string& shape) {
+  std::string s = header(name, lx, ly, lz, n, kWalls);
   s += fmt("materials: {solid: {density: %g, shear_modulus: %g}, fluid: {density: %g, viscosity: %g}}\n", rhoS, mu,
            rhoF, nuF);
   s += "fluid: fluid\n"
@@ -131,7 +130,7 @@ TEST_P(StiffSolid, BlockFallsOntoFloor) {
   const std::string shape = "{type: box, lo: [0.3, 0.1, 0.3], hi: [0.7, 0.4, 0.7]}";
   char nm[64];
   std::snprintf(nm, sizeof nm, "stiff_mu1e%d", int(std::lround(std::log10(mu))));
-  auto r = runCase(nm, cellsText(c, c, c), solidScene(nm, n, 1, 1, 1, 2000, mu, 1000, 1e-3, shape, 1.0), steps,
+  auto r = runCase(nm, cellsText(c, c, c), solidScene(nm, n, 1, 1, 1, 2000, mu, 1000, 1e-3, shape), steps,
                    Energy::Gravity, 1000 * 0.4 * 0.3 * 0.4);
   EXPECT_EQ(r.steps, steps);
   const double dtElastic = 0.5 * (1.0 / c) / std::sqrt(mu / 2000);
@@ -230,8 +229,7 @@ TEST(StabilityMatrix, BallHitsObstacle) {
   const long steps = full() ? 300 : 150;
   std::string s = header("ball_obstacle", 1, 1, 0.5, n,
                          "{default: {type: slip}, x-: {type: periodic}, x+: {type: periodic}, z-: {type: periodic}, "
-                         "z+: {type: periodic}}",
-                         0.01);
+                         "z+: {type: periodic}}");
   s += "materials: {solid: {density: 3000, shear_modulus: 1.0e4}, water: {density: 1000, viscosity: 1.0e-3}}\n"
        "fluid: water\n"
        "effects: [navier_stokes, obstacles, level_set, reinit, elasticity]\n"
@@ -243,7 +241,7 @@ TEST(StabilityMatrix, BallHitsObstacle) {
 }
 
 // Long run: 10^4 steps of an elastic ball (density 2000, mu_S 1e3) settling in
-// water on an 8^3 grid, 100 s of simulated time at max_dt. Full matrix only: it
+// water on an 8^3 grid at the adaptive dt. Full matrix only: it
 // takes ~100 s at 1 rank (10 ms a step: the step cost at 8^3 is overhead).
 TEST(StabilityMatrix, LongRun) {
   if (!full()) GTEST_SKIP() << "full matrix only (VOIGT_STABILITY_FULL=1)";
@@ -256,32 +254,7 @@ TEST(StabilityMatrix, LongRun) {
   expectStable(r, steps, 0.7); // measured 0.56 at 8^3 (radius 2 cells: the smoothing is the ball)
 }
 
-// Two fluids at rest (issue 21, item 4): water below y = 0.4 (0.4 cell off a
-// face), air above, density ratio 1000, closed box, gravity, and the approximate
-// (7-point) projection with multigrid at tolerance 1e-6, which both paper scenes
-// run. Hydrostatic balance must hold: the bound is the issue's, max |u_d| below
-// 1e-6 m/s at every step, over 10^4 steps (full matrix; 1000 in the fast one).
-// Measured: see README "Stability matrix". The divergence check of the other
-// cases does not apply (the approximate operator is not D B G).
-TEST(StabilityMatrix, RestRatio1000Approximate) {
-  const int c = 16;
-  const long steps = full() ? 10000 : 1000;
-  std::string s = header("rest_ratio1000", 1, 1, 1, {c, c, c}, kWalls, 0.002);
-  const std::string exact = "projection: {operator: exact, tolerance: 1.0e-8, max_iterations: 5000}";
-  s.replace(s.find(exact), exact.size(), "projection: {operator: approximate, preconditioner: multigrid, tolerance: 1.0e-6}");
-  s += "materials: {water: {density: 1000, viscosity: 1.0e-3}, air: {density: 1, viscosity: 1.8e-5}}\n"
-       "fluid: air\n"
-       "gravity: [0, -9.81, 0]\n"
-       "effects: [navier_stokes, gravity, level_set, reinit]\n"
-       "level_set: {phase: water, shape: {type: box, lo: [-1, -1, -1], hi: [2, 0.4, 2]}}\n";
-  auto r = runCase("rest_ratio1000_approx", cellsText(c, c, c), s, steps, Energy::Gravity, 999 * 0.4);
-  r.worstDivRatio = 0; // the CG bound is for the exact operator (header): not checked here
-  printRow(r, 1e-6);   // the global correction holds the volume to ~1e-10
-  if (test::worldRank() == 0) std::printf("[ rest ] rest_ratio1000_approx: max |u_d| %.3e m/s\n", r.maxSpeed);
-  EXPECT_EQ(r.steps, steps);
-  EXPECT_LT(r.maxSpeed, 1e-6);
-  EXPECT_LE(r.growth, r.allowed) << "energy grows";
-}
+// Fluids at rest: test_matrix_rest.cpp.
 
 // High inflow through the porous bed at reduced size (full matrix only):
 // cases/porous_bed/packing.csv (181 spheres, d = 2.5 cm, bonded into one elastic
@@ -299,8 +272,7 @@ TEST(StabilityMatrix, PorousBedHighInflow) {
   const long steps = 600;
   std::string s = header("porous_bed", 0.11, 0.33, 0.11, n,
                          "{default: {type: no_slip}, y-: {type: inflow, velocity: [0, 1, 0]}, "
-                         "y+: {type: outflow, pressure: 0}}",
-                         0.01);
+                         "y+: {type: outflow, pressure: 0}}");
   s += "materials: {bed: {density: 1000, shear_modulus: 1.0e4}, air: {density: 1.2, viscosity: 1.8e-5}}\n"
        "fluid: air\n"
        "gravity: [0, -9.81, 0]\n"

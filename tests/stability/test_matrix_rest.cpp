@@ -1,0 +1,102 @@
+// The stability matrix, rest cases (issue 50): fluids at rest under gravity must stay at
+// rest on the defaults a user gets - adaptive dt, no projection section (exact operator,
+// fast diagonalization, tolerance 1e-3 at two densities), level set + reinit as given.
+// Bound: max |u_d| <= 1e-8 m/s on every step of the fast runs (200-1000 steps) and
+// 1e-9 m/s over 10^4 steps (VOIGT_STABILITY_FULL=1), the issue's numbers.
+// On d7c7ccf (rho^n in the momentum stage: the interface-gravity coupling was forward
+// Euler, unstable at any dt) the column reached KE 5e-8 J (max |u| 5e-4 m/s) by step 100
+// and the tank with the sphere 0.08 J (0.46 m/s) by step 200 (README, "Rest at rest").
+#include "stability/matrix_runner.hpp"
+
+namespace {
+
+// A closed box of water (below y = level) under air of density rhoAir, on the defaults.
+std::string restScene(const char* name, double lx, double ly, double lz, int nx, int ny, int nz, double level,
+                      double rhoWater, double rhoAir, const std::string& extra = "") {
+  std::string s = fmt("name: %s\n"
+                      "domain: {lo: [0, 0, 0], hi: [%g, %g, %g], cells: [%d, %d, %d]}\n"
+                      "boundaries: {default: {type: no_slip}}\n"
+                      "time: {end: 1.0e9}\n"
+                      "output: {enabled: false}\n",
+                      name, lx, ly, lz, nx, ny, nz);
+  s += fmt("materials: {water: {density: %g, viscosity: 1.0e-3}, air: {density: %g, viscosity: 1.8e-5}}\n", rhoWater,
+           rhoAir);
+  s += "fluid: air\n"
+       "gravity: [0, -9.81, 0]\n";
+  s += extra.empty() ? "effects: [navier_stokes, gravity, level_set, reinit]\n"
+                     : "effects: [navier_stokes, gravity, obstacles, level_set, reinit]\n" + extra;
+  s += fmt("level_set: {phase: water, shape: {type: box, lo: [-1, -1, -1], hi: [2, %g, 2]}}\n", level);
+  return s;
+}
+
+void expectRest(Result& r, long steps, double bound) {
+  printRow(r, 1e-6);
+  if (test::worldRank() == 0)
+    std::printf("[ rest ] %s: max |u_d| %.3e m/s over %ld steps (bound %.0e), dt %.4g (%s)\n", r.name.c_str(),
+                r.maxSpeed, r.steps, bound, r.s.dt.empty() ? 0.0 : r.s.dt.back(),
+                r.s.reason.empty() ? "" : r.s.reason.back().c_str());
+  EXPECT_EQ(r.steps, steps);
+  EXPECT_LE(r.maxSpeed, bound);
+  EXPECT_LE(r.growth, r.allowed) << "energy grows";
+  EXPECT_LE(r.maxDrift, 1e-6); // nothing moves: the volume stays (measured ~1e-15)
+}
+
+long restSteps() { return full() ? 10000 : 200; }
+double restBound() { return full() ? 1e-9 : 1e-8; }
+
+} // namespace
+
+// The issue's first scene: unit cube, 32^3, water below y = 0.5 (a cell face), ratio 1000.
+// dt is the gravity limit on every step (0.0399 s).
+TEST(StabilityRest, ColumnRatio1000) {
+  const long steps = restSteps();
+  auto r = runCase("rest_column_ratio1000", cellsText(32, 32, 32),
+                   restScene("rest_column", 1, 1, 1, 32, 32, 32, 0.5, 1000, 1), steps, Energy::Gravity, 999 * 0.5);
+  r.worstDivRatio = 0; // u* is round-off: the ratio to it says nothing
+  expectRest(r, steps, restBound());
+  EXPECT_EQ(r.reasons["gravity"], steps); // the adaptive default, not a tightened dt
+}
+
+// The issue's second scene: 1.5 x 1 x 0.75 (48 x 32 x 24), interface at y = 0.37 (off the
+// faces), a fixed sphere of radius 0.15 half submerged (obstacles).
+TEST(StabilityRest, TankWithSphereRatio1000) {
+  const long steps = restSteps();
+  const std::string sphere = "obstacles: [{type: sphere, center: [0.75, 0.37, 0.375], radius: 0.15}]\n";
+  auto r = runCase("rest_sphere_ratio1000", cellsText(48, 32, 24),
+                   restScene("rest_sphere", 1.5, 1, 0.75, 48, 32, 24, 0.37, 1000, 1, sphere), steps, Energy::Gravity,
+                   999 * 0.37 * 1.5 * 0.75);
+  r.worstDivRatio = 0;
+  expectRest(r, steps, restBound());
+}
+
+// Ratio 1.1e4: mercury (13 600) under air (1.2), interface at y = 0.4 (off the faces).
+TEST(StabilityRest, ColumnRatio1e4) {
+  const int c = full() ? 32 : 16;
+  const long steps = full() ? 10000 : 1000;
+  auto r = runCase("rest_column_ratio1e4", cellsText(c, c, c),
+                   restScene("rest_mercury", 1, 1, 1, c, c, c, 0.4, 13600, 1.2), steps, Energy::Gravity,
+                   13598.8 * 0.4);
+  r.worstDivRatio = 0;
+  expectRest(r, steps, 1e-9);
+}
+
+// The approximate (7-point) projection with multigrid, an option the paper scenes have run
+// (issue 21), on the adaptive dt (d7c7ccf ran it at max_dt 0.002), with its default
+// projection.hydrostatic: none. Its first solve (tolerance 1e-6) leaves ~2e-8 m/s, so the
+// bound is issue 21's, 1e-6 m/s, and the speed must not grow: the largest over the last
+// tenth of the run at most that over the first tenth (measured 2.2e-9 against 1.8e-8 over
+// 3000 steps; with hydrostatic: balanced it grew tenfold every ~80 steps: README).
+TEST(StabilityRest, ColumnRatio1000Approximate) {
+  const int c = 16;
+  const long steps = full() ? 10000 : 1000;
+  std::string s = restScene("rest_approx", 1, 1, 1, c, c, c, 0.4, 1000, 1);
+  s += "projection: {operator: approximate, preconditioner: multigrid, tolerance: 1.0e-6}\n";
+  auto r = runCase("rest_column_ratio1000_approx", cellsText(c, c, c), s, steps, Energy::Gravity, 999 * 0.4);
+  r.worstDivRatio = 0; // the CG bound is for the exact operator
+  expectRest(r, steps, 1e-6);
+  const size_t n = r.s.speed.size(), tenth = std::max<size_t>(1, n / 10);
+  ASSERT_GE(n, tenth);
+  const double first = *std::max_element(r.s.speed.begin(), r.s.speed.begin() + tenth);
+  const double last = *std::max_element(r.s.speed.end() - tenth, r.s.speed.end());
+  EXPECT_LE(last, first) << "the speed grows";
+}
