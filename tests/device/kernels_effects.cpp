@@ -95,17 +95,11 @@ void effectKernels(const Grid& g, Fields& f) {
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(f.u2.c[c], 0.5);
   addBodyForce(f.u2, 0.1, -9.81, 0.2, nodes);
   put("addBodyForce", sumAbs(f.u2, nodes));
-  { // balanced gravity: every column from the top down, once from the domain's top and once
-    // from a given plane (the rank above), as two ranks would (kernels/momentum.hpp)
-    const Field ph = mk(g, "ph"), p2 = mk(g, "p2");
-    Kokkos::deep_copy(p2, f.p);
-    const Plane top("top", g.ln[0], g.ln[2]), last("last", g.ln[0], g.ln[2]);
-    hydrostaticShift(g, 1, -9.81, f.rho, ph, p2, top, true, last);
-    Kokkos::deep_copy(top, 0.5);
-    hydrostaticShift(g, 1, -9.81, f.rho, ph, p2, top, false, last);
-    hydrostaticShift(g, 0, 2.0, f.rho, ph, p2, Plane("top0", g.ln[1], g.ln[2]), true, Plane("last0", g.ln[1], g.ln[2]));
-    put("hydrostaticShift", sumAbs(ph, cells) + sumAbs(p2, cells));
-  }
+  const Field ph = mk(g, "ph"), p2 = mk(g, "p2"); // balanced gravity: from the top, below a plane (the rank above), +x
+  const Plane top("top", g.ln[0], g.ln[2]), last("last", g.ln[0], g.ln[2]), t0("t0", g.ln[1], g.ln[2]);
+  hydrostaticShift(g, 1, -9.81, f.rho, ph, p2, top, true, last);
+  hydrostaticShift(g, 1, -9.81, f.rho, ph, p2, last, false, top); // below the first pass's bottom layer
+  hydrostaticShift(g, 0, 2.0, f.rho, ph, p2, t0, true, t0), put("hydrostaticShift", sumAbs(ph, cells) + sumAbs(p2, cells));
   const IntField mask("mask7", g.ext[0], g.ext[1], g.ext[2]);
   Kokkos::parallel_for(
       "check_mask7", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = (i + 2 * j + k) % 3 ? 7 : 3; });
@@ -130,7 +124,6 @@ void effectKernels(const Grid& g, Fields& f) {
     put("prescribedFlowRate." + std::to_string(type), prescribedFlowRate(g, fp));
   }
 }
-
 } // namespace
 
 // The blow-up and dt-collapse diagnostics of the app (first non-finite point, fastest
