@@ -285,6 +285,7 @@ void readSettings(const Section& top, Scene& sc) {
   // ratio-1000 column grew tenfold every ~80 steps at the gravity dt (16^3), and without the
   // split it decays (README, "Rest at rest").
   P.hydrostatic = p.choice("hydrostatic", exact ? "balanced" : "none", {"balanced", "none"});
+  P.volumeTolerance = p.number("volume_tolerance", P.volumeTolerance, {0, 1, false, true}); // 0: off
   p.finish();
 
   Section a = top.section("advection");

@@ -111,6 +111,13 @@ struct ProjectionCfg {
   // the departure from hydrostatics (effects/gravity.cpp); none: gravity as a plain body force.
   // Default: balanced with the exact operator, none with the approximate one (scene/load.cpp).
   std::string hydrostatic = "balanced";
+  // An absolute floor beside the relative tolerance: no CG when the divergence the solve
+  // could leave changes no cell's volume by more than this in the step (dt max|div| <=
+  // volume_tolerance, Basilisk's TOLERANCE measure; with the exact operator D u = dt r, so
+  // ||b|| <= volume_tolerance / dt^2 suffices). 1e-12 is 5 orders below what a moving run's
+  // solves leave at tolerance 1e-3 (~5e-7 a step on a falling drop), so it acts only where
+  // the rhs is round-off of cancelled terms: a flow at rest (README, "Gravity and rest").
+  double volumeTolerance = 1e-12;
 };
 
 struct AdvectionCfg {

@@ -47,8 +47,9 @@ class PoissonSolver {
   // CG starts from x0 or 0, whichever has the smaller residual (x0 is often the
   // previous increment, far worse than 0 once the flow is at rest). When
   // ||b|| <= 1e-14 max(||A||_inf ||x||, ||b_given||) (b after projection, x that
-  // start) b is below what double precision resolves: no CG, x is the start.
-  virtual PoissonStats solve(const Field& rhs, const Field& x) = 0;
+  // start) b is below what double precision resolves: no CG, x is the start. The same
+  // when ||b|| <= floor (the caller's absolute scale: projection.volume_tolerance / dt^2).
+  virtual PoissonStats solve(const Field& rhs, const Field& x, double floor = 0) = 0;
   virtual void apply(const Field& x, const Field& y) = 0; // y = A x on owned cells
   virtual long long globalNonzeros() const = 0;
   virtual int nullModeCount() const = 0;

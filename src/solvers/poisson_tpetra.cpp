@@ -114,7 +114,7 @@ class TpetraPoisson final : public PoissonSolver {
     ready_ = true;
   }
 
-  PoissonStats solve(const Field& rhs, const Field& x) override {
+  PoissonStats solve(const Field& rhs, const Field& x, double floor) override {
     if (!ready_) throw std::logic_error("PoissonSolver::solve before setCoefficients");
     const double t0 = MPI_Wtime();
     PoissonStats st;
@@ -138,9 +138,10 @@ class TpetraPoisson final : public PoissonSolver {
       x_->putScalar(0);
       rn = bn;
     }
-    if (bn <= kRoundoff * std::max(anorm_ * x_->norm2(), b0)) {
+    if (bn <= kRoundoff * std::max(anorm_ * x_->norm2(), b0) || bn <= floor) {
       // b is at round-off relative to A x (or to its own null part): the
-      // increment is below what double precision resolves. Keep x.
+      // increment is below what double precision resolves; or below the caller's
+      // absolute floor (a resting flow whose rhs is round-off of cancelled terms). Keep x.
       st.relResidual = bn > 0 ? rn / bn : 0.0;
       st.converged = true;
     } else {

@@ -80,7 +80,7 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   divergence(g, acc, div, cells);
   poissonRhs(div, rhs, 1.0, cells); // -div
   Kokkos::deep_copy(dp, 0.0);
-  const PoissonStats s = solver_->solve(rhs, dp);
+  const PoissonStats s = solver_->solve(rhs, dp, scene_->projection.volumeTolerance / (st.dt * st.dt));
   addTo(dp, pr, cells);
   Kokkos::deep_copy(dp, 0.0);
   st.halo->exchange(pr);

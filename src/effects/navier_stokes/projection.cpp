@@ -71,7 +71,7 @@ void NavierStokes::project(State& st) {
     f2 = st.fields.scalar("pressure_rate_old");
     if (rateHistory_ > 0) extrapolateIncrement(f1, f2, dp, dt, rateHistory_ > 1, cells);
   }
-  const PoissonStats s = solver_->solve(rhs, dp);
+  const PoissonStats s = solver_->solve(rhs, dp, scene_->projection.volumeTolerance / (dt * dt));
   if (extrapolate) {
     shiftPressureRates(f1, f2, dp, dt, cells);
     rateHistory_ = std::min(rateHistory_ + 1, 2);
