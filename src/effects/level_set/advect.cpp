@@ -3,7 +3,11 @@
 //     dpsi/dt = -[div(v psi) - psi div_h v]        (kernels/levelset.hpp)
 //   with SSP-RK2 (Heun) and the velocity frozen at u^n:
 //     psi1 = psi^n + dt R(psi^n);  psi^{n+1} = (psi^n + psi1 + dt R(psi1)) / 2
-//   Properties, Eq. (2)-(4): rho = H rho_1 + (1 - H) rho_2, same for mu.
+//   Properties, Eq. (2)-(4): rho = H rho_1 + (1 - H) rho_2, same for mu; blended from psi^n
+//   at the start of a step and again from psi^{n+1} after the advection, so the momentum
+//   stage sees rho^{n+1}: interface displacement and velocity then form a symplectic-Euler
+//   pair, stable for omega dt <= 2 (with rho^n, forward Euler: unstable at any dt; README,
+//   "Gravity and rest").
 #include <cmath>
 
 #include "effects/level_set/level_set.hpp"
@@ -29,7 +33,7 @@ void LevelSet::advect(State& st) {
     advanceCellAdvection(g, psi, old, cells, limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
   }
   refreshGhosts(st, psi);
-  blend(st); // the momentum stage sees rho^{n+1}, mu^{n+1}
+  blend(st); // rho^{n+1}, mu^{n+1} for the momentum stage (header)
 }
 
 void LevelSet::blend(State& st) {
