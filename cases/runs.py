@@ -57,12 +57,17 @@ def tagged_model(model, sets, scene=None):
     """The fluid-side model with the level set's volume correction: "integrate+global" (the
     default since 2026-12-03) or "integrate+none" (rows from before hold the bare name), and
     "+exact" when the run projects with the exact operator (issue 19; every paper-scene run
-    before 2026-12-05 used the approximate one, and their ids carry no projection tag)."""
+    before 2026-12-05 used the approximate one, and their ids carry no projection tag), then
+    "+balanced" (issue 50)."""
     corr = "global"
     for s in sets:
         if s.startswith("level_set.volume_correction="):
             corr = s.split("=", 1)[1].strip()
     tag = "+exact" if scene and projection_of(scene, sets) == "exact" else ""
+    # "+balanced": balanced gravity and rho^{n+1} in the momentum stage (issue 50, 2026-12-06),
+    # the default with the exact operator; earlier exact runs carry "+exact" alone.
+    if tag and not any(s.strip() == "projection.hydrostatic=none" for s in sets):
+        tag += "+balanced"
     return "%s+%s%s" % (model, corr, tag)
 
 

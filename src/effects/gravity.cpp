@@ -63,7 +63,7 @@ class Gravity : public Effect {
     });
   }
   void summary(const State&, nlohmann::json& j) const override {
-    j["gravity"] = {{"hydrostatic", balanced_ ? "balanced" : "none"}, {"axis", "xyz"[axis_]}};
+    j["gravity"] = {{"hydrostatic", balanced_ ? "balanced" : "none"}, {"axis", std::string(1, "xyz"[axis_])}};
   }
   void saveState(nlohmann::json& j) const override { j["hydrostatic_in_pressure"] = balanced_; }
   // A checkpoint from before the split: its pressure holds the hydrostatic part already,
