@@ -283,7 +283,7 @@ void readSettings(const Section& top, Scene& sc) {
   P.matrixFree = p.boolean("matrix_free", P.matrixFree);
   // Balanced gravity needs the exact operator: with the 7-point one the rest state of a
   // ratio-1000 column grew tenfold every ~80 steps at the gravity dt (16^3), and without the
-  // split it decays (README, "Rest at rest").
+  // split it decays (README, "Gravity and rest").
   P.hydrostatic = p.choice("hydrostatic", exact ? "balanced" : "none", {"balanced", "none"});
   P.volumeTolerance = p.number("volume_tolerance", P.volumeTolerance, {0, 1, false, true}); // 0: off
   p.finish();
