@@ -52,7 +52,7 @@ double hydrostaticError(const State& st, double g) {
 } // namespace
 
 // Exact operator, tolerance 1e-12, 18 steps to t = 1: measured max|u| = 6.3e-13
-// and hydrostatic residual 3.7e-15 (relative to rho_water g); 9.4e-15 and 3.7e-16 with
+// and hydrostatic residual 3.7e-15 (relative to rho_water g); 1.8e-15 and 3.7e-16 with
 // balanced gravity (the default since issue 50). Bounds: 1e-10 and
 // 1e-12, two to three orders above round-off and far below any real flow.
 TEST(TwoPhase, HeavyBelowLightStaysAtRest) {
@@ -74,9 +74,8 @@ TEST(TwoPhase, HeavyBelowLightStaysAtRest) {
 // Balanced gravity (issue 50; effects/gravity.cpp): the stored pressure carries the column
 // sum p_h of the current density, so the resting state is a fixed point at ANY solver
 // tolerance: here 0.5, with the interface off the faces and, at 2 ranks, the ranks split
-// along y (the column sums run from the top rank down). Measured: max|u| 9.4e-15 m/s and a
-// hydrostatic residual 3.7e-16 (relative to rho_water g), the same as at tolerance 1e-12
-// above; the top cell holds p = rho g h / 2 (zero on the top face). Bounds as above: 1e-10
+// along y (the column sums run from the top rank down). Measured: max|u| 3.5e-15 m/s and a
+// hydrostatic residual 7.4e-16 (relative to rho_water g), as at tolerance 1e-12 above; the top cell holds p = rho g h / 2 (zero on the top face). Bounds as above: 1e-10
 // and 1e-12. With projection.hydrostatic: none at the same tolerance the same run ends at
 // max|u| 4.3e-3 m/s (the solve meets the hydrostatic pressure only to 0.5): the control.
 TEST(TwoPhase, BalancedGravityRestAtAnyTolerance) {
