@@ -15,6 +15,7 @@ Reinitializer::Reinitializer(const Grid& g, ReinitParams p) : g_(&g), p_(p) {
   if (p_.iterations < 0) throw std::invalid_argument("reinit: iterations must be >= 0");
   if (!(p_.dtauCells > 0 && p_.dtauCells <= 1)) throw std::invalid_argument("reinit: dtau must be in (0, 1] cells");
   if (!(p_.band > 0)) throw std::invalid_argument("reinit: band must be > 0");
+  if (!(p_.zoneTolerance >= 0)) throw std::invalid_argument("reinit: zone_tolerance must be >= 0");
   // band >= kappa keeps H'(psi0) = 0 on every frozen cell, so the Eq. (21)
   // integrals see only cells that the constraint also corrects.
   if (p_.volumeConstraint && !(p_.kappa > 0 && p_.kappa <= p_.band))
@@ -50,12 +51,14 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
   // psi0 = psi. The stage fields start as copies, so the stencils read the frozen
   // values wherever the band kernels do not write.
   refresh(halo, psi);
-  const int n = buildBandList(g, psi, p_.band, band_.cell);
+  const double zt = p_.zoneTolerance;
+  const int n = buildBandList(g, psi, p_.band, band_.cell, p_.kappa, zt);
   band_.nRuns = listRuns(band_.cell, n, band_.runs);
   Kokkos::deep_copy(psi1_, psi);
   if (con) {
     Kokkos::deep_copy(psiT_, psi);
     deltaField(g, psi, dH_, p_.kappa);
+    if (zt > 0) unsettleDelta(g, psi, dH_, p_.kappa, zt);
   }
   prepareBand(g, band_, n, psi, dH_, gm_, p_.band, con);
 

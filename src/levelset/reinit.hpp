@@ -25,10 +25,11 @@ struct ReinitParams {
   double band = 0;         // work only where |psi0| < band (length); must be >= kappa
   bool volumeConstraint = true;
   bool subcellFix = false; // Russo & Smereka (2000) next to the interface (kernels/reinit.hpp: off, measured)
+  double zoneTolerance = 0; // leave smoothing-zone cells with ||grad psi| - 1| below it as advected (settledCell)
 };
 
 struct ReinitStats {
-  long long bandCells = 0; // global count of cells with |psi0| < band
+  long long bandCells = 0; // global count of cells re-initialised: |psi0| < band, not settled
   double seconds = 0;      // wall time of the call (this rank, after a fence)
   // Global max ||grad psi| - 1| at the end (central differences) over band cells
   // not next to the interface (psi0 keeps its sign across every face), whose 6

@@ -266,10 +266,8 @@ void reinitialisation(const Grid& g, Fields& f) {
   b.runs = IntList("runs", size_t(n > 0 ? n : 1));
   b.nRuns = listRuns(b.cell, n, b.runs);
   put("listRuns.band", b.nRuns);
-  reinit::deltaField(g, f.q, f.dH, 2 * h);
-  put("deltaField", sumAbs(f.dH, cellRange(g)));
-  reinit::gradMagField(g, f.q, f.dH, f.gm);
-  put("gradMagField", sumAbs(f.gm, cellRange(g)));
+  reinit::deltaField(g, f.q, f.dH, 2 * h), put("deltaField", sumAbs(f.dH, cellRange(g)));
+  reinit::gradMagField(g, f.q, f.dH, f.gm), put("gradMagField", sumAbs(f.gm, cellRange(g)));
   reinit::prepareBand(g, b, n, f.q, f.dH, f.gm, band, true);
   put("prepareBand.flags", sumList(b.flags, n)), put("prepareBand.values", sumBand(b, n));
   reinit::listConstrained(b, n, f.dH); // prepareBand called it; again: the same list
@@ -286,6 +284,8 @@ void reinitialisation(const Grid& g, Fields& f) {
   reinit::copyBand(g, b, n, f.psi1, f.psiT);
   put("copyBand", sumAbs(f.psiT, cellRange(g)));
   put("maxGradError", reinit::maxGradError(g, b, n, f.q, band));
+  put("buildBandList.settled", reinit::buildBandList(g, f.q, band, b.cell, 2 * h, 0.05)); // zone_tolerance
+  reinit::unsettleDelta(g, f.q, f.dH, 2 * h, 0.05), put("unsettleDelta", sumAbs(f.dH, cellRange(g)));
   put("smoothedDelta", smoothedDelta(0.01, 0.05) + smoothedHeaviside(0.01, 0.05) + sharpHeaviside(-1.0));
 }
 
