@@ -68,6 +68,10 @@ def tagged_model(model, sets, scene=None):
     # the default with the exact operator; earlier exact runs carry "+exact" alone.
     if tag and not any(s.strip() == "projection.hydrostatic=none" for s in sets):
         tag += "+balanced"
+    # "+settled": reinit.zone_tolerance > 0, the default since 2026-12-06 (issue 50): settled
+    # smoothing-zone cells keep their advected values. Earlier runs carry no tag.
+    if not any(s.strip() in ("reinit.zone_tolerance=0", "reinit.zone_tolerance=0.0") for s in sets):
+        tag += "+settled"
     return "%s+%s%s" % (model, corr, tag)
 
 

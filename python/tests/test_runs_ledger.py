@@ -120,18 +120,19 @@ class Ledger(unittest.TestCase):
 
     def test_run_id_says_which_projection(self):
         scene = os.path.join(self.dir.name, "s.yaml")
-        for body, sets, tag in [("projection:\n  operator: approximate\n  tolerance: 1e-6\n", [], ""),
-                                ("projection:\n  # note\n\n  operator: exact\n", [], "+exact+balanced"),
-                                ("time: {end: 1}\n", [], "+exact+balanced"),  # Voigt's default operator
-                                ("projection:\n  tolerance: 1e-3\nother:\n  operator: approximate\n", [], "+exact+balanced"),
-                                ("projection:\n  operator: approximate\n", ["projection.operator=exact"], "+exact+balanced"),
-                                ("time: {end: 1}\n", ["projection.hydrostatic=none"], "+exact"),  # issue 50 off
-                                ("projection:\n  operator: exact\n", ["projection.operator=approximate"], "")]:
+        for body, sets, tag in [("projection:\n  operator: approximate\n  tolerance: 1e-6\n", [], "+settled"),
+                                ("projection:\n  # note\n\n  operator: exact\n", [], "+exact+balanced+settled"),
+                                ("time: {end: 1}\n", [], "+exact+balanced+settled"),  # Voigt's default operator
+                                ("projection:\n  tolerance: 1e-3\nother:\n  operator: approximate\n", [], "+exact+balanced+settled"),
+                                ("projection:\n  operator: approximate\n", ["projection.operator=exact"], "+exact+balanced+settled"),
+                                ("time: {end: 1}\n", ["projection.hydrostatic=none"], "+exact+settled"),  # issue 50 off
+                                ("time: {end: 1}\n", ["reinit.zone_tolerance=0"], "+exact+balanced"),
+                                ("projection:\n  operator: exact\n", ["projection.operator=approximate"], "+settled")]:
             with open(scene, "w") as f:
                 f.write("domain:\n  cells: [4, 8, 4]\n" + body)
             self.assertEqual(runs.tagged_model("extend", sets, scene), "extend+global" + tag, body)
-        self.assertEqual(runs.run_id("100", runs.tagged_model("extend", [], scene), "4x8x4"), "mu100_extend+global+exact+balanced_4x8x4")
-        self.assertEqual(runs.tagged_model("extend", ["level_set.volume_correction=none"]), "extend+none")
+        self.assertEqual(runs.run_id("100", runs.tagged_model("extend", [], scene), "4x8x4"), "mu100_extend+global+exact+balanced+settled_4x8x4")
+        self.assertEqual(runs.tagged_model("extend", ["level_set.volume_correction=none"]), "extend+none+settled")
 
     def test_durations(self):
         for text, s in [("3h", 10800), ("170m", 10200), ("3600s", 3600), ("02:50:00", 10200)]:
