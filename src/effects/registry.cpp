@@ -14,6 +14,7 @@ std::unique_ptr<Effect> makeReinit();
 std::unique_ptr<Effect> makePrescribedFlow();
 std::unique_ptr<Effect> makeElasticity();
 std::unique_ptr<Effect> makeSolidBody();
+std::unique_ptr<Effect> makeSurfaceTension();
 
 const std::vector<EffectInfo>& effectRegistry() {
   static const std::vector<EffectInfo> reg = {
@@ -31,6 +32,8 @@ const std::vector<EffectInfo>& effectRegistry() {
        "elasticity", makeElasticity},
       {"solid_body", "diagnostics of the psi > 0 body: centroid, velocity, orientation, bending, gaps, contacts",
        "solid_body", makeSolidBody},
+      {"surface_tension", "capillary force sigma kappa grad H on the interface, balanced with the pressure (CSF)",
+       "surface_tension", makeSurfaceTension},
   };
   return reg;
 }

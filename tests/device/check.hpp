@@ -74,6 +74,8 @@ inline Dense denseOf(int n) {
 
 // The parts in kernels_effects.cpp (the effects' kernels), run after the others.
 void effects(const Grid& g, Fields& f);
+// kernels_capillary.cpp (surface tension), after effects().
+void capillary(const Grid& g, Fields& f);
 
 } // namespace check
 } // namespace voigt

@@ -1,5 +1,5 @@
 # Every launcher of kernels/*.hpp (a line `inline <type> name(`) must be called in
-# tests/device/kernels_all.cpp or kernels_effects.cpp, so that the device-compile check instantiates every kernel
+# tests/device/kernels_all.cpp, kernels_effects.cpp or kernels_capillary.cpp, so that the device-compile check instantiates every kernel
 # (issue 25). Helpers with no dispatch of their own are listed in _voigt_not_launchers.
 #   cmake -P tests/device/launchers.cmake        CTest device.launchers: fails, naming the missing
 #   include(launchers.cmake); voigt_check_launchers(<mode>)   <mode>: WARNING (tests/device)
@@ -20,6 +20,8 @@ function(voigt_check_launchers mode)
   file(READ "${_root}/tests/device/kernels_all.cpp" _calls)
   file(READ "${_root}/tests/device/kernels_effects.cpp" _calls2)
   string(APPEND _calls "${_calls2}")
+  file(READ "${_root}/tests/device/kernels_capillary.cpp" _calls3)
+  string(APPEND _calls "${_calls3}")
   set(_missing "")
   foreach(_h IN LISTS _headers)
     file(STRINGS "${_h}" _lines REGEX "^inline [^(]* [A-Za-z_][A-Za-z0-9_]*\\(")

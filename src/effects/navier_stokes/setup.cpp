@@ -108,7 +108,8 @@ void NavierStokes::registerTasks(Pipeline& p) {
   p.add(Stage::Momentum, name(),
         std::string("SSP-RK2 predictor: MUSCL advection (") + (conservative_ ? "conservative rho u" : "velocity form") +
             ") + stress + forces - grad p^n",
-        [this](State& st) { momentum(st, *pipeline_); }, {"gravity"}); // after the hydrostatic shift of p
+        [this](State& st) { momentum(st, *pipeline_); },
+        {"gravity", "surface_tension"}); // after the hydrostatic shift of p and the curvature
   if (conservative_)
     p.add(Stage::Properties, name(), "node density rho^n for the conservative momentum advection",
           [this](State& st) { nodeDensity(st); }, {"level_set"});

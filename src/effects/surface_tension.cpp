@@ -1,0 +1,113 @@
+// surface_tension: the continuum surface force (Brackbill et al. 1992) on the level set's
+// interface, f = sigma kappa grad H(psi), in balanced form (Francois et al. 2006): on the
+// pressure gradient's own node stencil and coefficient, with kappa evaluated at the
+// interface and carried along the normals over the smoothing zone (kernels/curvature.hpp).
+// A drop at rest with one curvature is then a fixed point once p = sigma kappa H + const:
+// the predictor's coef (sigma kappa G H - G p) is zero to round-off.
+// `form: csf` is the plain force for comparison: sigma kappa(psi) H'(psi) grad psi at the
+// nodes from the cell curvature where it is, without the pressure's stencil.
+// Scene section `surface_tension`: sigma (N/m, required), form (balanced | csf).
+// Time step (Brackbill): dt <= sqrt(rho_mean h^3 / (2 pi sigma)), rho_mean the phases' mean.
+#include <cmath>
+
+#include "core/boundary.hpp"
+#include "core/field_names.hpp"
+#include "core/halo.hpp"
+#include "effects/effect.hpp"
+#include "kernels/curvature.hpp"
+#include "scene/reader.hpp"
+
+namespace voigt {
+
+namespace {
+constexpr char kCurvature[] = "curvature";
+
+class SurfaceTension : public Effect {
+ public:
+  std::string name() const override { return "surface_tension"; }
+  std::vector<std::string> dependsOn() const override { return {"navier_stokes", "level_set"}; }
+  void configure(const Scene& s, const Published& pub) override {
+    const Section sec = topSection(s, "surface_tension");
+    sigma_ = sec.requireNumber("sigma", Range::nonNegative());
+    balanced_ = sec.choice("form", "balanced", {"balanced", "csf"}) == "balanced";
+    sec.finish();
+    geo_ = pub.levelSet;
+    rhoMean_ = 0.5 * (s.materials.at(pub.phase).density + s.fluidMaterial().density);
+  }
+  void declareFields(FieldStore& f) const override {
+    f.declare(field::psi, Centring::Cell, 1, name());
+    f.declareDerived(kCurvature, Centring::Cell, 1, name());
+    for (const char* n : {"capillary_H", "curvature_cell", "curvature_known", "curvature_tmp", "curvature_tmp_known"})
+      f.declareDerived(n, Centring::Cell, 1, name());
+  }
+  // Brackbill et al. (1992), Eq. (61): the capillary wave of the shortest length must not
+  // travel more than a cell in a step.
+  DtLimit dtLimit(const State& st) const override {
+    if (sigma_ <= 0) return {};
+    const double h = std::min({st.grid.h[0], st.grid.h[1], st.grid.h[2]});
+    return {std::sqrt(rhoMean_ * h * h * h / (2 * M_PI * sigma_)), "capillary"};
+  }
+  void registerTasks(Pipeline& p) override {
+    // psi^{n+1} is fixed over the predictor's two stages: kappa once, before them.
+    p.add(Stage::Momentum, name(), "interface curvature of psi^{n+1}, extended over the zone",
+          [this](State& st) { curvature(st); });
+    p.add(Stage::Forces, name(), balanced_ ? "sigma kappa G H on the pressure's stencil (balanced CSF)"
+                                           : "sigma kappa H'(psi) grad psi (plain CSF)",
+          [this](State& st) { force(st); });
+  }
+  void summary(const State&, nlohmann::json& j) const override {
+    j["surface_tension"] = {{"sigma", sigma_}, {"form", balanced_ ? "balanced" : "csf"}};
+  }
+
+ private:
+  double reach(const Grid& g) const { return geo_.kappa(g) + std::min({g.h[0], g.h[1], g.h[2]}); }
+
+  void curvature(State& st) {
+    const Grid& g = st.grid;
+    Field psi = st.fields.scalar(field::psi), kc = st.fields.scalar("curvature_cell");
+    Field ext = st.fields.scalar(kCurvature), known = st.fields.scalar("curvature_known");
+    Field tmp = st.fields.scalar("curvature_tmp"), tmpKnown = st.fields.scalar("curvature_tmp_known");
+    Field H = st.fields.scalar("capillary_H");
+    st.halo->exchange(psi);
+    fillCellGhostsEven(g, psi);
+    curvature::cellCurvature(g, psi, kc, cellRange(g, 1));
+    curvature::heavisideField(psi, H, geo_.kappa(g), cellRange(g, 2));
+    if (!balanced_) return; // the plain CSF uses the cell curvature where it is
+    curvature::interfaceCurvature(psi, kc, ext, known, cellRange(g));
+    // Each sweep reaches one more layer: the zone plus one cell, on both sides.
+    const double r = reach(g), hmin = std::min({g.h[0], g.h[1], g.h[2]});
+    const int sweeps = int(std::ceil(r / hmin)) + 1;
+    for (int s = 0; s < sweeps; ++s) {
+      st.halo->exchange(std::vector<Field>{ext, known}, 1);
+      fillCellGhostsEven(g, ext);
+      fillCellGhostsEven(g, known);
+      curvature::extendSweep(g, psi, ext, known, tmp, tmpKnown, r, cellRange(g));
+      std::swap(ext, tmp);
+      std::swap(known, tmpKnown);
+    }
+    if (sweeps % 2 == 1) Kokkos::deep_copy(st.fields.scalar(kCurvature), ext); // the named field holds it
+    st.halo->exchange(st.fields.scalar(kCurvature), 1);
+    fillCellGhostsEven(g, st.fields.scalar(kCurvature));
+  }
+
+  void force(State& st) {
+    const Grid& g = st.grid;
+    const Field psi = st.fields.scalar(field::psi), H = st.fields.scalar("capillary_H");
+    const VecField coef = st.fields.vector("proj_coef");
+    if (balanced_)
+      curvature::addCapillaryForce(g, psi, H, st.fields.scalar(kCurvature), coef, sigma_, reach(g), st.evalRhs,
+                                   nodeRange(g));
+    else
+      curvature::addPlainCsf(g, psi, st.fields.scalar("curvature_cell"), coef, sigma_, geo_.kappa(g), st.evalRhs,
+                             nodeRange(g));
+  }
+
+  double sigma_ = 0, rhoMean_ = 1;
+  bool balanced_ = true;
+  LevelSetGeometry geo_;
+};
+} // namespace
+
+std::unique_ptr<Effect> makeSurfaceTension() { return std::make_unique<SurfaceTension>(); }
+
+} // namespace voigt
