@@ -106,7 +106,8 @@ inline void extendSweep(const Grid& g, const Field& psi, const Field& src, const
 
 // H(psi) of Eq. (4) on the cells of r (the balanced force's potential).
 inline void heavisideField(const Field& psi, const Field& H, double kappa, Range3 r) {
-  for_each3("heaviside_field", r, KOKKOS_LAMBDA(int i, int j, int k) { H(i, j, k) = smoothedHeaviside(psi(i, j, k), kappa); });
+  for_each3("heaviside_field", r,
+            KOKKOS_LAMBDA(int i, int j, int k) { H(i, j, k) = smoothedHeaviside(psi(i, j, k), kappa); });
 }
 
 // rhs += coef sigma kappa_n G H (balanced) at the nodes of r; kappa_n the mean of ext over the
