@@ -37,6 +37,7 @@ class SurfaceTension : public Effect {
   void declareFields(FieldStore& f) const override {
     f.declare(field::psi, Centring::Cell, 1, name());
     f.declareDerived(kCurvature, Centring::Cell, 1, name());
+    if (!balanced_) return; // the plain CSF needs the cell curvature only
     for (const char* n : {"capillary_H", "curvature_cell", "curvature_known", "curvature_tmp", "curvature_tmp_known"})
       f.declareDerived(n, Centring::Cell, 1, name());
   }
@@ -64,15 +65,17 @@ class SurfaceTension : public Effect {
 
   void curvature(State& st) {
     const Grid& g = st.grid;
-    Field psi = st.fields.scalar(field::psi), kc = st.fields.scalar("curvature_cell");
-    Field ext = st.fields.scalar(kCurvature), known = st.fields.scalar("curvature_known");
+    // psi's ghosts (halos and walls) are fresh: the level set's Advection stage ends refreshing them.
+    const Field psi = st.fields.scalar(field::psi);
+    Field ext = st.fields.scalar(kCurvature);
+    if (!balanced_) { // the plain CSF uses the cell curvature where it is
+      curvature::cellCurvature(g, psi, ext, cellRange(g, 1));
+      return;
+    }
+    Field kc = st.fields.scalar("curvature_cell"), known = st.fields.scalar("curvature_known");
     Field tmp = st.fields.scalar("curvature_tmp"), tmpKnown = st.fields.scalar("curvature_tmp_known");
-    Field H = st.fields.scalar("capillary_H");
-    st.halo->exchange(psi);
-    fillCellGhostsEven(g, psi);
     curvature::cellCurvature(g, psi, kc, cellRange(g, 1));
-    curvature::heavisideField(psi, H, geo_.kappa(g), cellRange(g, 2));
-    if (!balanced_) return; // the plain CSF uses the cell curvature where it is
+    curvature::heavisideField(psi, st.fields.scalar("capillary_H"), geo_.kappa(g), cellRange(g, 2));
     curvature::interfaceCurvature(psi, kc, ext, known, cellRange(g));
     // Each sweep reaches one more layer: the zone plus one cell, on both sides.
     const double r = reach(g), hmin = std::min({g.h[0], g.h[1], g.h[2]});
@@ -92,14 +95,13 @@ class SurfaceTension : public Effect {
 
   void force(State& st) {
     const Grid& g = st.grid;
-    const Field psi = st.fields.scalar(field::psi), H = st.fields.scalar("capillary_H");
+    const Field psi = st.fields.scalar(field::psi), kap = st.fields.scalar(kCurvature);
     const VecField coef = st.fields.vector("proj_coef");
     if (balanced_)
-      curvature::addCapillaryForce(g, psi, H, st.fields.scalar(kCurvature), coef, sigma_, reach(g), st.evalRhs,
+      curvature::addCapillaryForce(g, psi, st.fields.scalar("capillary_H"), kap, coef, sigma_, reach(g), st.evalRhs,
                                    nodeRange(g));
     else
-      curvature::addPlainCsf(g, psi, st.fields.scalar("curvature_cell"), coef, sigma_, geo_.kappa(g), st.evalRhs,
-                             nodeRange(g));
+      curvature::addPlainCsf(g, psi, kap, coef, sigma_, geo_.kappa(g), st.evalRhs, nodeRange(g));
   }
 
   double sigma_ = 0, rhoMean_ = 1;
