@@ -117,31 +117,43 @@ KOKKOS_INLINE_FUNCTION double godunov2(double s, double dm, double dp) {
 // already within tol of a distance loses nothing by being left as advected; tol = 0
 // re-initialises every band cell (the paper).
 KOKKOS_INLINE_FUNCTION bool settledCell(const Field& psi0, int i, int j, int k, double ih0, double ih1, double ih2,
-                                        double kappa, double tol) {
+                                        double kappa, double tol, bool curved) {
   const double p0 = psi0(i, j, k);
   if (!(km::fabs(p0) < kappa)) return false;
-  const double gx = (psi0(i + 1, j, k) - psi0(i - 1, j, k)) * ih0;
-  const double gy = (psi0(i, j + 1, k) - psi0(i, j - 1, k)) * ih1;
-  const double gz = (psi0(i, j, k + 1) - psi0(i, j, k - 1)) * ih2;
-  return km::fabs(km::sqrt(gx * gx + gy * gy + gz * gz) - 1.0) < tol;
+  const double pe = psi0(i + 1, j, k), pw = psi0(i - 1, j, k), pn = psi0(i, j + 1, k), ps = psi0(i, j - 1, k);
+  const double pt = psi0(i, j, k + 1), pb = psi0(i, j, k - 1);
+  const double gx = (pe - pw) * ih0, gy = (pn - ps) * ih1, gz = (pt - pb) * ih2;
+  // curved: a curved distance function is not one to the central differences: their
+  // truncation error, (h^2 / 6) n . (psi_xxx, psi_yyy, psi_zzz), is -(h kappa)^2 nx^2 ny^2 on
+  // a circle (at most (h kappa)^2 / 4) and -(h kappa)^2 (1 - sum n^4) / 8 on a sphere, kappa =
+  // lap psi the mean curvature's sum. So the tolerance grows by (h kappa)^2 / 4 where the
+  // curvature is resolved (h |kappa| <= 1/2: 2 cells per radius of a circle, 4 of a sphere);
+  // an unresolved corner is re-initialised as before.
+  if (!curved) return km::fabs(km::sqrt(gx * gx + gy * gy + gz * gz) - 1.0) < tol;
+  const double h2 = 0.25 / minOf(ih0 * ih0, minOf(ih1 * ih1, ih2 * ih2)); // (largest h)^2
+  const double lap = ((pe + pw - 2 * p0) * ih0 * ih0 + (pn + ps - 2 * p0) * ih1 * ih1 + (pt + pb - 2 * p0) * ih2 * ih2) * 4;
+  const double hk2 = h2 * lap * lap;
+  const double allow = hk2 <= 0.25 ? 0.25 * hk2 : 0.0;
+  return km::fabs(km::sqrt(gx * gx + gy * gy + gz * gz) - 1.0) < tol + allow;
 }
 
 // Compact list of owned cells with |psi0| < band that are not settled (tol > 0); returns
 // the count. psi0 must be fresh one ghost layer deep.
 inline int buildBandList(const Grid& g, const Field& psi0, double band, const IntList& cell, double kappa = 0,
-                         double tol = 0) {
+                         double tol = 0, bool curved = false) {
   const double ih0 = 0.5 / g.h[0], ih1 = 0.5 / g.h[1], ih2 = 0.5 / g.h[2];
   return listCellsWhere("reinit_band_list", g, cellRange(g), cell, KOKKOS_LAMBDA(int i, int j, int k) {
-    return km::fabs(psi0(i, j, k)) < band && !(tol > 0 && settledCell(psi0, i, j, k, ih0, ih1, ih2, kappa, tol));
+    return km::fabs(psi0(i, j, k)) < band && !(tol > 0 && settledCell(psi0, i, j, k, ih0, ih1, ih2, kappa, tol, curved));
   });
 }
 
 // H' = 0 on the settled cells of the owned cells and one ghost layer (what the
 // constraint's 27-point sums read): they take no correction and add none.
-inline void unsettleDelta(const Grid& g, const Field& psi0, const Field& dH, double kappa, double tol) {
+inline void unsettleDelta(const Grid& g, const Field& psi0, const Field& dH, double kappa, double tol,
+                          bool curved = false) {
   const double ih0 = 0.5 / g.h[0], ih1 = 0.5 / g.h[1], ih2 = 0.5 / g.h[2];
   for_each3("reinit_settled", cellRange(g, 1), KOKKOS_LAMBDA(int i, int j, int k) {
-    if (settledCell(psi0, i, j, k, ih0, ih1, ih2, kappa, tol)) dH(i, j, k) = 0.0;
+    if (settledCell(psi0, i, j, k, ih0, ih1, ih2, kappa, tol, curved)) dH(i, j, k) = 0.0;
   });
 }
 

@@ -52,13 +52,13 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
   // values wherever the band kernels do not write.
   refresh(halo, psi);
   const double zt = p_.zoneTolerance;
-  const int n = buildBandList(g, psi, p_.band, band_.cell, p_.kappa, zt);
+  const int n = buildBandList(g, psi, p_.band, band_.cell, p_.kappa, zt, p_.zoneCurvature);
   band_.nRuns = listRuns(band_.cell, n, band_.runs);
   Kokkos::deep_copy(psi1_, psi);
   if (con) {
     Kokkos::deep_copy(psiT_, psi);
     deltaField(g, psi, dH_, p_.kappa);
-    if (zt > 0) unsettleDelta(g, psi, dH_, p_.kappa, zt);
+    if (zt > 0) unsettleDelta(g, psi, dH_, p_.kappa, zt, p_.zoneCurvature);
   }
   prepareBand(g, band_, n, psi, dH_, gm_, p_.band, con);
 

@@ -2,6 +2,7 @@
 // (kernels/curvature.hpp). Every call's result becomes a checksum (check.hpp). psi is the
 // level-set field of fill(); the extension runs two sweeps.
 #include "kernels/curvature.hpp"
+#include "kernels/reinit.hpp"
 #include "check.hpp"
 
 namespace voigt {
@@ -25,6 +26,16 @@ void capillary(const Grid& g, Fields& f) {
   put("addCapillaryForce", sumAbs(rhs, nodeRange(g)));
   curvature::addPlainCsf(g, f.psi, kap, f.coef, 0.07, kappa, rhs, nodeRange(g));
   put("addPlainCsf", sumAbs(rhs, nodeRange(g)));
+  // reinit.zone_curvature (kernels/reinit.hpp, settledCell): psi scaled by 1.025 is settled where
+  // the curved allowance (h kappa)^2 / 4 passes 0.025: part of the zone.
+  const Field d = mk(g, "scaled_psi"), dH = mk(g, "dH");
+  const Field psi = f.psi;
+  for_each3("scaled_psi", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}},
+            KOKKOS_LAMBDA(int i, int j, int k) { d(i, j, k) = 1.025 * psi(i, j, k); });
+  const IntList cell("cell", size_t(g.cellsOwned()));
+  put("buildBandList.curved", reinit::buildBandList(g, d, 6 * h, cell, kappa, 1e-6, true));
+  reinit::deltaField(g, d, dH, kappa), reinit::unsettleDelta(g, d, dH, kappa, 1e-6, true);
+  put("unsettleDelta.curved", sumAbs(dH, cellRange(g)));
 }
 
 } // namespace check
