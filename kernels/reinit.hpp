@@ -137,6 +137,31 @@ KOKKOS_INLINE_FUNCTION bool settledCell(const Field& psi0, int i, int j, int k, 
   return km::fabs(km::sqrt(gx * gx + gy * gy + gz * gz) - 1.0) < tol + allow;
 }
 
+// The band's far side bounded by its neighbours (issue 51): out = sign(psi) max(kappa, min(|psi|,
+// min over same-sign face neighbours n of |psi_n| + h_n)) on the cells with |psi| >= kappa; the
+// smoothing zone is copied. A distance satisfies the bound already (1-Lipschitz), so it is left
+// as it is; what the bound fixes is advected psi outside the band: where the flow converges on
+// the interface (under a rising bubble) it steepens psi, |grad psi| reached 8, and a cell two
+// cells from the interface kept |psi| = 15 h, outside the band, never re-initialised, with the
+// curvature and the zone's neighbours read from it. No sign changes and no zone cell moves, so
+// H(psi) and every phase volume are unchanged. One Jacobi pass a call; psi fresh one layer deep.
+inline void boundFarField(const Grid& g, const Field& psi, const Field& out, double kappa) {
+  const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
+  for_each3("reinit_bound_far", cellRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
+    const double p = psi(i, j, k), a = km::fabs(p);
+    double m = a;
+    if (a >= kappa) {
+      const double nb[6] = {psi(i - 1, j, k), psi(i + 1, j, k), psi(i, j - 1, k),
+                            psi(i, j + 1, k), psi(i, j, k - 1), psi(i, j, k + 1)};
+      const double hs[3] = {h0, h1, h2};
+      for (int q = 0; q < 6; ++q)
+        if (nb[q] * p > 0) m = minOf(m, km::fabs(nb[q]) + hs[q / 2]);
+      m = maxOf(m, kappa);
+    }
+    out(i, j, k) = p < 0 ? -m : m;
+  });
+}
+
 // Compact list of owned cells with |psi0| < band that are not settled (tol > 0); returns
 // the count. psi0 must be fresh one ghost layer deep.
 inline int buildBandList(const Grid& g, const Field& psi0, double band, const IntList& cell, double kappa = 0,

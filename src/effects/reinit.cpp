@@ -2,7 +2,7 @@
 // paper Eq. (17)-(21), on the level set's narrow band (levelset/reinit.hpp).
 // Scene section `reinit`: interval (steps), iterations, dtau (cells),
 // volume_constraint, subcell_fix (Russo & Smereka; off by default, see
-// kernels/reinit.hpp), zone_curvature and zone_tolerance (settled smoothing-zone cells keep their
+// kernels/reinit.hpp), far_bound, zone_curvature and zone_tolerance (settled smoothing-zone cells keep their
 // advected values: kernels/reinit.hpp, settledCell). kappa and band come from the `level_set` section.
 #include <algorithm>
 #include <memory>
@@ -38,6 +38,9 @@ class Reinit : public Effect {
     // capillary currents decay (tests/levelset/test_surface_tension.cpp). On by default with
     // surface tension only: in a shearing flow it costs shape (single vortex T = 2 at 128^2:
     // E 0.166 h against 0.149 h; README, "Re-initialisation and rest").
+    // far_bound: |psi| outside the smoothing zone bounded by its neighbours' + h before each call
+    // (kernels/reinit.hpp, boundFarField), so that no cell near the interface is left outside the band.
+    p_.boundFarField = r.boolean("far_bound", true);
     const bool capillary = std::count(s.effects.begin(), s.effects.end(), "surface_tension") > 0;
     p_.zoneCurvature = r.boolean("zone_curvature", capillary);
     r.finish();
@@ -81,7 +84,8 @@ class Reinit : public Effect {
                    {"volume_constraint", p_.volumeConstraint},
                    {"subcell_fix", p_.subcellFix},
                    {"zone_tolerance", p_.zoneTolerance},
-                   {"zone_curvature", p_.zoneCurvature}};
+                   {"zone_curvature", p_.zoneCurvature},
+                   {"far_bound", p_.boundFarField}};
   }
 
  private:

@@ -51,6 +51,12 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
   // psi0 = psi. The stage fields start as copies, so the stencils read the frozen
   // values wherever the band kernels do not write.
   refresh(halo, psi);
+  if (p_.boundFarField) { // kernels/reinit.hpp: no cell near the interface stays outside the band
+    Kokkos::deep_copy(psi1_, psi);
+    boundFarField(g, psi, psi1_, p_.kappa);
+    Kokkos::deep_copy(psi, psi1_);
+    refresh(halo, psi);
+  }
   const double zt = p_.zoneTolerance;
   const int n = buildBandList(g, psi, p_.band, band_.cell, p_.kappa, zt, p_.zoneCurvature);
   band_.nRuns = listRuns(band_.cell, n, band_.runs);

@@ -26,6 +26,7 @@ struct ReinitParams {
   bool volumeConstraint = true;
   bool subcellFix = false; // Russo & Smereka (2000) next to the interface (kernels/reinit.hpp: off, measured)
   double zoneTolerance = 0; // leave smoothing-zone cells with ||grad psi| - 1| below it as advected (settledCell)
+  bool boundFarField = false; // bound |psi| outside the zone by its neighbours' + h first (boundFarField)
   bool zoneCurvature = false; // ... below it plus the central differences' error on a curved distance
 };
 

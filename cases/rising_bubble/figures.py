@@ -1,0 +1,93 @@
+"""Figures of the rising-bubble study (bubble.py figures): per case the circularity, centroid
+and rise velocity against time at each grid beside the MooNMD reference series, and the shapes
+at t = 3 beside the reference shape; then the benchmark scalars' errors against the TP2D
+values over h and over wall time (the accuracy and its price)."""
+import csv
+import glob
+import json
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+HERE = os.path.dirname(os.path.realpath(__file__))
+KEYS = [("min_circularity", "min circularity"), ("max_rise_velocity", "max rise velocity"),
+        ("centroid_y_t3", "centroid y at t = 3")]
+
+
+def digests(d, case):
+    out = []
+    for f in sorted(glob.glob(os.path.join(d, "case%d_*.json" % case))):
+        out.append(json.load(open(f)))
+    return sorted(out, key=lambda g: g["n"])
+
+
+def case_figure(case, digs, ref_series, path):
+    fig, ax = plt.subplots(1, 4, figsize=(17, 4.2))
+    rt, rc, ry, rv = ref_series(case)
+    for a, f, name in zip(ax[:3], (rc, ry, rv), ("circularity", "centroid y", "rise velocity")):
+        a.plot(rt, f, "k-", lw=2.5, alpha=0.35, label="MooNMD (reference)")
+        a.set_xlabel("t")
+        a.set_title(name)
+    for g in digs:
+        lab = "Voigt h = 1/%d" % g["n"]
+        ax[0].plot(g["t"], g["circularity"], label=lab)
+        ax[1].plot(g["t"], g["centroid_y"], label=lab)
+        ax[2].plot(g["t"], g["rise_velocity"], label=lab)
+        if g.get("shape"):
+            ax[3].plot(g["shape"][0], g["shape"][1], label=lab + " (t = %.2f)" % g["shape_t"])
+    ref = os.path.join(HERE, "reference", "c%dg3l4s.txt" % case)
+    xs, ys = [], []
+    for line in open(ref):
+        p = line.split()
+        if len(p) >= 2:
+            xs.append(float(p[0])), ys.append(float(p[1]))
+    ax[3].plot(xs, ys, "k.", ms=1.5, alpha=0.5, label="MooNMD (reference)")
+    ax[3].set_aspect("equal")
+    ax[3].set_xlim(0, 1)
+    ax[3].set_title("shape at t = 3")
+    ax[0].legend(fontsize=7)
+    ax[3].legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    fig.suptitle("Rising bubble, Hysing et al. (2009) test case %d" % case)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def convergence_figure(rows, refs, path):
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    for case, col in ((1, 0), (2, 1)):
+        rs = sorted([r for r in rows if int(r["case"]) == case], key=lambda r: int(r["n"]))
+        if not rs:
+            continue
+        tp = refs(case)["TP2D"]
+        for key, name in KEYS:
+            err = [abs(float(r[key]) - tp[key]) / tp[key] for r in rs]
+            h = [1.0 / int(r["n"]) for r in rs]
+            w = [float(r["wall_s"]) for r in rs]
+            ax[0][col].loglog(h, err, "o-", label=name)
+            ax[1][col].loglog(w, err, "o-", label=name)
+        hh = [1.0 / int(r["n"]) for r in rs]
+        ax[0][col].loglog(hh, [0.05 * (x / hh[0]) for x in hh], "k:", label="first order")
+        ax[0][col].loglog(hh, [0.05 * (x / hh[0]) ** 2 for x in hh], "k--", label="second order")
+        ax[0][col].set_xlabel("h")
+        ax[1][col].set_xlabel("wall seconds (1 rank)")
+        for a in ax[:, col]:
+            a.set_ylabel("|relative error| vs TP2D")
+            a.set_title("test case %d" % case)
+            a.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def figures(a, refs, ref_series):
+    rows = list(csv.DictReader(open(a.csv))) if os.path.exists(a.csv) else []
+    for case in (1, 2):
+        digs = digests(a.digests, case)
+        if digs:
+            case_figure(case, digs, ref_series, os.path.join(a.o, "case%d.png" % case))
+    if rows:
+        convergence_figure(rows, refs, os.path.join(a.o, "convergence.png"))
