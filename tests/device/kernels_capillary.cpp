@@ -36,6 +36,9 @@ void capillary(const Grid& g, Fields& f) {
   put("buildBandList.curved", reinit::buildBandList(g, d, 6 * h, cell, kappa, 1e-6, true));
   reinit::deltaField(g, d, dH, kappa), reinit::unsettleDelta(g, d, dH, kappa, 1e-6, true);
   put("unsettleDelta.curved", sumAbs(dH, cellRange(g)));
+  // reinit.far_bound: the scaled psi's far side bounded by its neighbours' |psi| + h.
+  reinit::boundFarField(g, d, dH, kappa);
+  put("boundFarField", sumAbs(dH, cellRange(g)));
 }
 
 } // namespace check
