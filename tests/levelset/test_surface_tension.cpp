@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -137,32 +136,32 @@ TEST(SurfaceTension, CurrentsDecay) {
   }
 }
 
-// A capillary wave: y = a0 cos(k x), wavelength 1, a0 = 0.01, between two fluids of density 1
-// and viscosity 0.002 each, sigma = 1, no gravity, walls at y = -1 and 1 (k H = 2 pi: deep,
-// tanh = 1 - 7e-6), 32 cells per wavelength. Linear theory (Lamb 1932, Sec. 267; the
-// inviscid limit of Prosperetti 1981): omega0^2 = sigma k^3 / (rho1 + rho2) (omega0 = 11.14 /s,
-// period 0.564 s); the viscous damping, about 2 nu k^2 = 0.16 /s, shifts the frequency by
-// 1e-4. The period from the zero crossings of the amplitude at x = h/2 over two periods.
+// A capillary wave: y = a0 cos(k x), wavelength 1, a0 = 0.01, a liquid (density 1, viscosity
+// 0.002) under a gas 1000 times lighter (viscosity 2e-6: the same kinematic viscosity), sigma =
+// 1, no gravity, walls at y = -1 and 1 (k H = 2 pi: deep, tanh = 1 - 7e-6), 32 cells per
+// wavelength. Linear theory (Lamb 1932, Sec. 267; Prosperetti 1981's inviscid limit): omega0^2 =
+// sigma k^3 / (rho1 + rho2), period 0.39914 s; the viscous damping, about 2 nu k^2 = 0.16 /s,
+// shifts the frequency by 1e-4. The period from the zero crossings of the amplitude at x = h/2.
 TEST(SurfaceTension, CapillaryWavePeriod) {
-  const int n = std::getenv("WAVE_N") ? std::atoi(std::getenv("WAVE_N")) : 32;
-  const double h = 1.0 / n, k = 2 * M_PI, a0 = std::getenv("WAVE_A") ? std::atof(std::getenv("WAVE_A")) : 0.01;
+  const int n = 32;
+  const double h = 1.0 / n, k = 2 * M_PI, a0 = 0.01, nu = 0.002, rho1 = 1, rho2 = 0.001;
   const std::string scene =
       "domain: {lo: [0,-1,0], hi: [1,1," + std::to_string(2 * h) + "], cells: [" + std::to_string(n) + "," +
       std::to_string(2 * n) + ",2], ranks: [0,0,1]}\n"
       "boundaries: {default: {type: no_slip}, x-: {type: periodic}, x+: {type: periodic}, z-: {type: periodic}, "
       "z+: {type: periodic}}\n"
-      "time: {end: 100" + std::string(std::getenv("WAVE_T") ? std::getenv("WAVE_T") : "") + "}\n"
-      "materials: {lower: {density: 1, viscosity: 0.002}, upper: {density: 1, viscosity: 0.002}}\n"
-      "fluid: upper\n"
-      "effects: [navier_stokes, level_set" + std::string(std::getenv("WAVE_NOREINIT") ? "" : ", reinit") + ", surface_tension]\n" + std::string(std::getenv("WAVE_X") ? std::getenv("WAVE_X") : "") +
-      "level_set: {" + std::string(std::getenv("WAVE_LS") ? std::getenv("WAVE_LS") : "") + "phase: lower, shape: {type: wave, point: [0,0,0], normal: [0,1,0], direction: [1,0,0], "
-      "amplitude: " + std::to_string(a0) + ", wavelength: 1}}\n"
-      "surface_tension: {sigma: 1" + std::string(std::getenv("WAVE_ST") ? std::getenv("WAVE_ST") : "") + "}\n"
+      "time: {end: 100}\n"
+      "materials: {liquid: {density: 1, viscosity: 0.002}, gas: {density: 0.001, viscosity: 2.0e-6}}\n"
+      "fluid: gas\n"
+      "effects: [navier_stokes, level_set, reinit, surface_tension]\n"
+      "level_set: {phase: liquid, shape: {type: wave, point: [0,0,0], normal: [0,1,0], direction: [1,0,0], "
+      "amplitude: 0.01, wavelength: 1}}\n"
+      "surface_tension: {sigma: 1}\n"
       "output: {enabled: false}\n";
   Simulation sim(test::scene(scene), MPI_COMM_WORLD, RunOptions{});
-  const double omega0 = std::sqrt(k * k * k / 2), period = 2 * M_PI / omega0;
+  const double period = 2 * M_PI / std::sqrt(k * k * k / (rho1 + rho2));
   std::vector<double> crossings; // times where the amplitude changes sign
-  double prevT = 0, prevA = a0 * std::cos(k * h / 2), firstPeak = 0;
+  double prevT = 0, prevA = a0 * std::cos(k * h / 2), trough = 0;
   sim.advanceTo(2.1 * period, [&](const State& st) {
     // The interface height in the column at x = h/2: the sign change of psi along y.
     const Grid& g = st.grid;
@@ -170,25 +169,31 @@ TEST(SurfaceTension, CapillaryWavePeriod) {
     double y = -1e300;
     const auto r = cellRange(g);
     if (g.c0[0] == 0)
-      for (int j = r.b[1]; j + 1 < r.e[1] + 1; ++j) {
-        const int i = r.b[0], kk = r.b[2];
-        const double p0 = psi(i, j, kk), p1 = psi(i, j + 1, kk);
+      for (int j = r.b[1]; j < r.e[1]; ++j) {
+        const double p0 = psi(r.b[0], j, r.b[2]), p1 = psi(r.b[0], j + 1, r.b[2]);
         if (p0 > 0 && p1 <= 0) y = g.lo[1] + (g.global(1, j) + 0.5 + p0 / (p0 - p1)) * g.h[1];
       }
     MPI_Allreduce(MPI_IN_PLACE, &y, 1, MPI_DOUBLE, MPI_MAX, g.comm);
     if (prevA * y < 0) crossings.push_back(prevT + (st.t - prevT) * prevA / (prevA - y));
-    if (st.t > 0.4 * period && st.t < 0.6 * period) firstPeak = std::min(firstPeak, y); // the trough at T/2
+    if (crossings.size() == 1) trough = std::min(trough, y); // between T/4 and 3T/4
     prevT = st.t, prevA = y;
   });
   ASSERT_GE(crossings.size(), 4u);
   const double measured = (crossings[3] - crossings[0]) / 1.5; // crossings T/2 apart
+  const double decay = -trough / (a0 * std::cos(k * h / 2)), theory = std::exp(-2 * nu * k * k * period / 2);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (rank == 0)
     std::printf("capillary wave, 32 cells per wavelength: period %.5f s, linear theory %.5f s (%+.2f %%); "
-                "amplitude at T/2 %.3f of a0 (inviscid 1, damped exp(-2 nu k^2 T/2) = %.3f)\n",
-                measured, period, 100 * (measured / period - 1), -firstPeak / (a0 * std::cos(k * h / 2)),
-                std::exp(-2 * 0.002 * k * k * period / 2));
+                "amplitude at T/2 %.3f of a0 (2 nu k^2: %.3f)\n",
+                measured, period, 100 * (measured / period - 1), decay, theory);
   test::report("capillary_wave_period_error", measured / period - 1);
+  test::report("capillary_wave_half_period_amplitude", decay);
+  // Measured +2.1 % (64 cells: +0.49 %, second order). Allowed 3 %: the error at 32 cells of a
+  // second-order scheme with the smoothing zone 4 cells wide (1/8 of the wavelength).
   EXPECT_NEAR(measured / period, 1.0, 0.03);
+  // Damped, not amplified: the half-period amplitude (measured 0.976 against 0.969 from
+  // 2 nu k^2) below 1 and not below the viscous decay less 10 %.
+  EXPECT_LT(decay, 1.0);
+  EXPECT_GT(decay, 0.9 * theory);
 }
