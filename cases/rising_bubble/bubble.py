@@ -33,16 +33,26 @@ def case_of(summary):
     return 2 if "case2" in os.path.basename(summary["scene"]) else 1
 
 
+def is3d(d):
+    return json.load(open(os.path.join(d, "summary.json")))["grid"]["cells"][2] > 2
+
+
 def series(d):
-    """t, circularity, centroid y, rise velocity of run DIR (lists)."""
+    """t, circularity (3-D: sphericity), centroid y, rise velocity of run DIR (lists)."""
     with open(os.path.join(d, "timeseries.csv")) as f:
         rows = list(csv.DictReader(f))
+    three = is3d(d)
     t, c, y, v = [], [], [], []
     for r in rows:
-        vg, vl = float(r["volume_gas"]), float(r["volume_liquid"])
-        lz = (vg + vl) / 2.0  # the box is 1 x 2 x L_z
+        vg, vl, area = float(r["volume_gas"]), float(r["volume_liquid"]), float(r["interface_area"])
         t.append(float(r["t"]))
-        c.append(2 * math.sqrt(math.pi * vg / lz) / (float(r["interface_area"]) / lz))
+        if three:  # the area of the sphere of the bubble's volume over the bubble's area
+            c.append(math.pi ** (1 / 3.0) * (6 * vg) ** (2 / 3.0) / area)
+            y.append(float(r["solid_cy"]))
+            v.append(float(r["solid_vy"]))
+            continue
+        lz = (vg + vl) / 2.0  # the box is 1 x 2 x L_z
+        c.append(2 * math.sqrt(math.pi * vg / lz) / (area / lz))
         y.append(float(r["solid_cy"]))
         v.append(float(r["solid_vy"]))
     return t, c, y, v
@@ -76,10 +86,11 @@ def quantities(case, t, c, y, v):
     return q
 
 
-def references(case):
-    """{group: quantities} from reference/references.csv (the groups' finest grids)."""
+def references(case, three=False):
+    """{group: quantities} from reference/references.csv (the groups' finest grids; 3-D:
+    references3d.csv)."""
     out = {}
-    with open(os.path.join(REF, "references.csv")) as f:
+    with open(os.path.join(REF, "references3d.csv" if three else "references.csv")) as f:
         for r in csv.DictReader(f):
             if int(r["case"]) == case:
                 out[r["group"]] = {k: float(x) for k, x in r.items() if k not in ("case", "group", "file") and x}
@@ -98,7 +109,7 @@ def reference_series(case):
 
 
 def final_contour(d):
-    """The psi = 0 contour of DIR's last field file (x, y lists), or None."""
+    """The psi = 0 contour of DIR's last field file (x, y lists; 3-D: in the plane z = 1/2), or None."""
     files = sorted(glob.glob(os.path.join(d, "fields_*.h5")))
     if not files:
         return None
@@ -107,7 +118,8 @@ def final_contour(d):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    psi = h5py.File(files[-1], "r")["psi"][0]
+    full = h5py.File(files[-1], "r")["psi"]
+    psi = full[full.shape[0] // 2 if full.shape[0] > 2 else 0]  # 3-D: the mid-plane z = 1/2
     n = psi.shape[1]
     x = (np.arange(n) + 0.5) / n
     yy = (np.arange(psi.shape[0]) + 0.5) * 2.0 / psi.shape[0]
@@ -155,8 +167,8 @@ def cmd_show(a):
     s = json.load(open(os.path.join(a.dir, "summary.json")))
     case = case_of(s)
     q = quantities(case, *series(a.dir))
-    print("case %d (%s):" % (case, a.dir))
-    refs = references(case)
+    print("case %d%s (%s):" % (case, ", 3-D (circularity: sphericity)" if is3d(a.dir) else "", a.dir))
+    refs = references(case, is3d(a.dir))
     for k, x in q.items():
         print("  %-22s %.4f   %s" % (k, x, "  ".join("%s %.4f" % (g, r[k]) for g, r in refs.items() if k in r)))
 

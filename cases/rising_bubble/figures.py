@@ -83,6 +83,30 @@ def convergence_figure(rows, refs, path):
     plt.close(fig)
 
 
+def figure3d(digs, refs, path):
+    """The 3-D bubble: the series at each grid, the reference groups' extremes as markers."""
+    fig, ax = plt.subplots(1, 4, figsize=(17, 4.2))
+    for g in digs:
+        lab = "Voigt h = 1/%d" % g["n"]
+        ax[0].plot(g["t"], g["circularity"], label=lab)
+        ax[1].plot(g["t"], g["centroid_y"], label=lab)
+        ax[2].plot(g["t"], g["rise_velocity"], label=lab)
+        if g.get("shape"):
+            ax[3].plot(g["shape"][0], g["shape"][1], label=lab)
+    for name, r in refs.items():
+        ax[0].plot([r["t_min_circularity"]], [r["min_circularity"]], "x", label=name + " (min)")
+        ax[1].plot([3.0], [r["centroid_y_t3"]], "x", label=name)
+        ax[2].plot([r["t_max_rise_velocity"]], [r["max_rise_velocity"]], "x", label=name + " (max)")
+    for a, name in zip(ax, ("sphericity", "centroid y", "rise velocity", "section z = 1/2 at t = 3")):
+        a.set_title(name)
+        a.legend(fontsize=6)
+    ax[3].set_aspect("equal")
+    fig.suptitle("3-D rising bubble, Adelsberger et al. (2014) test case 1")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
 def figures(a, refs, ref_series):
     rows = list(csv.DictReader(open(a.csv))) if os.path.exists(a.csv) else []
     for case in (1, 2):
@@ -91,3 +115,7 @@ def figures(a, refs, ref_series):
             case_figure(case, digs, ref_series, os.path.join(a.o, "case%d.png" % case))
     if rows:
         convergence_figure(rows, refs, os.path.join(a.o, "convergence.png"))
+    d3 = os.path.join(os.path.dirname(a.digests.rstrip("/")), "digests3d")
+    digs = digests(d3, 1) if os.path.isdir(d3) else []
+    if digs:
+        figure3d(digs, refs(1, True), os.path.join(a.o, "bubble3d.png"))
