@@ -5,6 +5,8 @@ timeseries.csv, against the reference groups (reference/), for cases/rising_bubb
     bubble.py finished DIR                            exit 0 if DIR's run reached its end time
     bubble.py row DIR --csv CSV --digests D           add DIR's row to CSV, its digest to D/
     bubble.py show DIR                                print DIR's quantities
+    bubble.py table --csv CSV [--3d]                  the README's table: each grid's row beside
+                                                      the reference groups'
     bubble.py figures --csv CSV --digests D -o OUT    OUT/case<c>.png (time series beside the
                                                       references, the shapes at t = 3) and
                                                       OUT/convergence.png
@@ -26,7 +28,7 @@ HERE = os.path.dirname(os.path.realpath(__file__))
 REF = os.path.join(HERE, "reference")
 COLUMNS = ["case", "n", "h", "t_end", "min_circularity", "t_min_circularity", "max_rise_velocity",
            "t_max_rise_velocity", "max_rise_velocity_2", "t_max_rise_velocity_2", "centroid_y_t3", "steps",
-           "wall_s", "ranks", "revision"]
+           "cell_steps", "wall_s", "ranks", "revision"]
 
 
 def case_of(summary):
@@ -135,7 +137,9 @@ def cmd_row(a):
     n = s["grid"]["cells"][0]
     t, c, y, v = series(a.dir)
     q = quantities(case, t, c, y, v)
+    cells = s["grid"]["cells"][0] * s["grid"]["cells"][1] * s["grid"]["cells"][2]
     row = {"case": case, "n": n, "h": "1/%d" % n, "t_end": round(t[-1], 6), "steps": s["steps"],
+           "cell_steps": "%.3g" % (cells * s["steps"]),
            "wall_s": round(s["wall_seconds_total"], 1), "ranks": s["grid"].get("ranks_total", 1),
            "revision": s["revision"]}
     row.update({k: ("%.4f" % x if isinstance(x, float) else x) for k, x in q.items()})
@@ -173,6 +177,24 @@ def cmd_show(a):
         print("  %-22s %.4f   %s" % (k, x, "  ".join("%s %.4f" % (g, r[k]) for g, r in refs.items() if k in r)))
 
 
+def cmd_table(a):
+    keys = ["min_circularity", "t_min_circularity", "max_rise_velocity", "t_max_rise_velocity",
+            "max_rise_velocity_2", "t_max_rise_velocity_2", "centroid_y_t3"]
+    heads = ["c min", "t(c min)", "V max", "t(V max)", "V2 max", "t(V2 max)", "y(t = 3)"]
+    rows = list(csv.DictReader(open(a.csv)))
+    for case in sorted({int(r["case"]) for r in rows}):
+        ks = [k for k in keys if any(r.get(k) for r in rows if int(r["case"]) == case)]
+        hs = [heads[keys.index(k)] for k in ks]
+        print("Test case %d%s:\n" % (case, " (3-D; c: sphericity)" if a.three else ""))
+        print("| | " + " | ".join(hs) + " | cell-steps | wall s |")
+        print("|---" * (len(hs) + 3) + "|")
+        for r in sorted((r for r in rows if int(r["case"]) == case), key=lambda r: int(r["n"])):
+            print("| Voigt h = %s | %s | %s | %s |" % (r["h"], " | ".join(r[k] for k in ks), r["cell_steps"], r["wall_s"]))
+        for g, q in references(case, a.three).items():
+            print("| %s | %s | | |" % (g, " | ".join("%.4f" % q[k] if k in q else "" for k in ks)))
+        print()
+
+
 def cmd_finished(a):
     s = json.load(open(os.path.join(a.dir, "summary.json")))
     sys.exit(0 if s.get("state") == "finished" else 1)
@@ -187,6 +209,9 @@ def main():
     r.add_argument("dir")
     r.add_argument("--csv", required=True)
     r.add_argument("--digests", required=True)
+    tb = sub.add_parser("table")
+    tb.add_argument("--csv", required=True)
+    tb.add_argument("--3d", dest="three", action="store_true")
     f = sub.add_parser("figures")
     f.add_argument("--csv", required=True)
     f.add_argument("--digests", required=True)
@@ -197,7 +222,7 @@ def main():
         from figures import figures
         figures(a, references, reference_series)
     else:
-        {"finished": cmd_finished, "show": cmd_show, "row": cmd_row}[a.cmd](a)
+        {"finished": cmd_finished, "show": cmd_show, "row": cmd_row, "table": cmd_table}[a.cmd](a)
 
 
 if __name__ == "__main__":
