@@ -56,16 +56,18 @@ inline void addCellAdvection(const Grid& g, const Field& q, const VecField& v, c
       });
 }
 
-// Eq. (2) with the smoothed Heaviside of Eq. (4): phase 1 where psi > 0.
+// Eq. (2) with the smoothed Heaviside of Eq. (4): phase 1 where psi > 0;
 // On host backends a piece of 8 cells none of which lies in the band |psi| <= kappa takes
 // H = 0 or 1 without the polynomial (smoothedHeaviside's own branches, the same bits;
 // NaN counts as in the band): on the falling block most cells, and the polynomial,
 // vectorised, costs more than their memory traffic.
+// harmonic: mu = 1 / (H / mu1 + (1 - H) / mu2) instead (level_set.viscosity_blend; both > 0).
 inline void blendProperties(const Field& psi, double kappa, double rho1, double rho2, double mu1, double mu2,
-                            const Field& rho, const Field& mu, Range3 cells) {
+                            const Field& rho, const Field& mu, Range3 cells, bool harmonic = false) {
+  const double r1 = harmonic ? 1 / mu1 : 0, r2 = harmonic ? 1 / mu2 : 0;
   auto point = KOKKOS_LAMBDA(int i, int j, int k, double H) {
     rho(i, j, k) = H * rho1 + (1 - H) * rho2;
-    mu(i, j, k) = H * mu1 + (1 - H) * mu2;
+    mu(i, j, k) = harmonic ? 1 / (H * r1 + (1 - H) * r2) : H * mu1 + (1 - H) * mu2;
   };
   if constexpr (!kOnDevice) {
     const int b0 = cells.b[0], e0 = cells.e[0], b1 = cells.b[1], b2 = cells.b[2], nj = cells.e[1] - cells.b[1];

@@ -2,6 +2,7 @@
 // (kernels/curvature.hpp). Every call's result becomes a checksum (check.hpp). psi is the
 // level-set field of fill(); the extension runs two sweeps.
 #include "kernels/curvature.hpp"
+#include "kernels/levelset.hpp"
 #include "kernels/reinit.hpp"
 #include "check.hpp"
 
@@ -36,6 +37,10 @@ void capillary(const Grid& g, Fields& f) {
   put("buildBandList.curved", reinit::buildBandList(g, d, 6 * h, cell, kappa, 1e-6, true));
   reinit::deltaField(g, d, dH, kappa), reinit::unsettleDelta(g, d, dH, kappa, 1e-6, true);
   put("unsettleDelta.curved", sumAbs(dH, cellRange(g)));
+  // level_set.viscosity_blend: harmonic (kernels/levelset.hpp, blendProperties).
+  const Field rhoH = mk(g, "rho_harmonic"), muH = mk(g, "mu_harmonic");
+  blendProperties(f.psi, kappa, 1000.0, 1.0, 0.1, 1e-3, rhoH, muH, cellRange(g), true);
+  put("blendProperties.harmonic", sumAbs(muH, cellRange(g)));
   // reinit.far_bound: the scaled psi's far side bounded by its neighbours' |psi| + h.
   reinit::boundFarField(g, d, dH, kappa);
   put("boundFarField", sumAbs(dH, cellRange(g)));

@@ -194,22 +194,29 @@ TEST(LevelSet, BadScenesNameTheKey) {
   has(sceneErrorOf(lsScene("{type: sphere_packing, file: /nonexistent.csv}")), "cannot open");
 }
 
-// Eq. (2): density and viscosity are H-weighted; far inside/outside exact.
+// Eq. (2): density and viscosity are H-weighted; far inside/outside exact. With
+// level_set.viscosity_blend: harmonic the viscosity is 1 / (H / mu1 + (1 - H) / mu2).
 TEST(LevelSet, PropertiesBlended) {
-  Simulation sim(test::scene(lsScene("{type: plane, point: [0.5, 0.5, 0.5], normal: [0, 1, 0]}", 16)),
-                 MPI_COMM_WORLD, RunOptions{});
-  sim.initialize();
-  const Grid& g = sim.state().grid;
-  auto rho = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.state().fields.scalar("density"));
-  auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.state().fields.scalar("psi"));
-  const double kappa = 2 * g.h[1];
-  auto r = cellRange(g);
-  for (int k = r.b[2]; k < r.e[2]; ++k)
-    for (int j = r.b[1]; j < r.e[1]; ++j)
-      for (int i = r.b[0]; i < r.e[0]; ++i) {
-        const double H = smoothedHeaviside(psi(i, j, k), kappa);
-        ASSERT_NEAR(rho(i, j, k), 1000 * H + (1 - H), 1e-12);
-        const double yc = g.lo[1] + (g.global(1, j) + 0.5) * g.h[1];
-        ASSERT_NEAR(psi(i, j, k), 0.5 - yc, 1e-12); // a plane is its own distance
-      }
+  for (bool harmonic : {false, true}) {
+    Simulation sim(test::scene(lsScene("{type: plane, point: [0.5, 0.5, 0.5], normal: [0, 1, 0]}", 16,
+                                       harmonic ? ", viscosity_blend: harmonic" : "")),
+                   MPI_COMM_WORLD, RunOptions{});
+    sim.initialize();
+    const Grid& g = sim.state().grid;
+    auto rho = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.state().fields.scalar("density"));
+    auto mu = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.state().fields.scalar("viscosity"));
+    auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.state().fields.scalar("psi"));
+    const double kappa = 2 * g.h[1];
+    auto r = cellRange(g);
+    for (int k = r.b[2]; k < r.e[2]; ++k)
+      for (int j = r.b[1]; j < r.e[1]; ++j)
+        for (int i = r.b[0]; i < r.e[0]; ++i) {
+          const double H = smoothedHeaviside(psi(i, j, k), kappa);
+          ASSERT_NEAR(rho(i, j, k), 1000 * H + (1 - H), 1e-12);
+          const double m = harmonic ? 1 / (H / 1e-3 + (1 - H) / 1e-5) : 1e-3 * H + 1e-5 * (1 - H);
+          ASSERT_NEAR(mu(i, j, k), m, 1e-15);
+          const double yc = g.lo[1] + (g.global(1, j) + 0.5) * g.h[1];
+          ASSERT_NEAR(psi(i, j, k), 0.5 - yc, 1e-12); // a plane is its own distance
+        }
+  }
 }

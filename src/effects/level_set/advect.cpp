@@ -40,7 +40,7 @@ void LevelSet::blend(State& st) {
   if (!st.fields.allocated(field::density)) return; // kinematic scenes: nothing to blend
   const Grid& g = st.grid;
   blendProperties(st.fields.scalar(field::psi), geo_.kappa(g), rho1_, rho2_, mu1_, mu2_, st.fields.scalar(field::density),
-                  st.fields.scalar(field::viscosity), cellRange(g, g.ng));
+                  st.fields.scalar(field::viscosity), cellRange(g, g.ng), harmonicMu_);
   st.propertiesChanged = true;
 }
 

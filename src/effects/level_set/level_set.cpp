@@ -36,6 +36,11 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
   // Default: march unless the shape is already an exact distance.
   fastMarching_ = ls.boolean("fast_marching", !shape_.exactDistance);
   globalCorrection_ = ls.choice("volume_correction", "global", {"global", "none"}) == "global";
+  // viscosity_blend: linear (the paper's Eq. 2) or harmonic, 1 / mu = H / mu1 + (1 - H) / mu2, the
+  // series resistance of the two fluids to a shear across the zone (cases/rising_bubble/README.md).
+  harmonicMu_ = ls.choice("viscosity_blend", "linear", {"linear", "harmonic"}) == "harmonic";
+  if (harmonicMu_ && !(mu1_ > 0 && mu2_ > 0))
+    ls.fail("viscosity_blend", "harmonic needs both phases' viscosity > 0");
   for (int f = 0; f < 6; ++f) open_[f] = s.bc[f].type == BcType::Inflow || s.bc[f].type == BcType::Outflow;
   ls.finish();
   limiter_ = limiterNamed(s.advection.limiter);
@@ -121,6 +126,7 @@ void LevelSet::summary(const State& st, nlohmann::json& j) const {
                     {"volume_target", target_},
                     {"shift_total", shiftTotal_},
                     {"volume_corrected", volume0_ != 0 ? movedTotal_ / volume0_ : 0.0},
+                    {"viscosity_blend", harmonicMu_ ? "harmonic" : "linear"},
                     {"fast_marching",
                      {{"enabled", fastMarching_},
                       {"initial_cells", fm_.initialCells},

@@ -43,6 +43,7 @@ class LevelSet : public Effect {
   LevelSetGeometry geo_;
   std::string phase_;
   double rho1_ = 1, mu1_ = 0, rho2_ = 1, mu2_ = 0;
+  bool harmonicMu_ = false; // level_set.viscosity_blend: harmonic
   bool fastMarching_ = true;
   ShapeProgram shape_;
   Limiter limiter_ = Limiter::MinMod;
