@@ -56,7 +56,7 @@ inline void addCellAdvection(const Grid& g, const Field& q, const VecField& v, c
       });
 }
 
-// Eq. (2) with the smoothed Heaviside of Eq. (4): phase 1 where psi > 0;
+// Eq. (2) with the smoothed Heaviside of Eq. (4): phase 1 where psi > 0.
 // On host backends a piece of 8 cells none of which lies in the band |psi| <= kappa takes
 // H = 0 or 1 without the polynomial (smoothedHeaviside's own branches, the same bits;
 // NaN counts as in the band): on the falling block most cells, and the polynomial,
