@@ -93,6 +93,18 @@ int check(const Scene& scene, bool estimate, bool presets, const std::string& pa
       std::cout << "warning    fixed dt exceeds the stable limit\n";
     std::cout << std::flush;
   }
+  if (dt.reason == "viscous") { // what the semi-implicit viscous step would give (collective)
+    LoadOptions o = effectLoadOptions(sets);
+    o.overrides.push_back("navier_stokes.viscous=semi_implicit");
+    Simulation alt(loadScene(path, o), MPI_COMM_WORLD);
+    alt.initialize();
+    const DtLimit a = alt.stableDt();
+    if (rankOf() == 0)
+      std::cout << "           navier_stokes.viscous: semi_implicit lifts the viscous limit: first dt = " << a.dt << " ("
+                << a.reason << "), " << a.dt / dt.dt << "x; first order in time where dt nu k^2 is not small "
+                << "(README, \"Semi-implicit viscosity\")\n"
+                << std::flush;
+  }
   Estimate e;
   if (estimate) {
     e = estimateRun(scene, MPI_COMM_WORLD);

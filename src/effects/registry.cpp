@@ -18,7 +18,7 @@ std::unique_ptr<Effect> makeSurfaceTension();
 
 const std::vector<EffectInfo>& effectRegistry() {
   static const std::vector<EffectInfo> reg = {
-      {"navier_stokes", "incompressible momentum: MUSCL advection, viscous stress, projection", "",
+      {"navier_stokes", "incompressible momentum: MUSCL advection, viscous stress, projection", "navier_stokes",
        makeNavierStokes},
       {"gravity", "body force from the scene's gravity vector", "", makeGravity},
       {"obstacles", "fixed or moving rigid bodies: prescribed node velocities", "", makeObstacles},

@@ -76,6 +76,8 @@ inline Dense denseOf(int n) {
 void effects(const Grid& g, Fields& f);
 // kernels_capillary.cpp (surface tension), after effects().
 void capillary(const Grid& g, Fields& f);
+// kernels_viscous.cpp (semi-implicit viscosity), after capillary().
+void viscous(const Grid& g, Fields& f);
 
 } // namespace check
 } // namespace voigt

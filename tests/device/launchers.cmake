@@ -1,5 +1,5 @@
 # Every launcher of kernels/*.hpp (a line `inline <type> name(`) must be called in
-# tests/device/kernels_all.cpp, kernels_effects.cpp or kernels_capillary.cpp, so that the device-compile check instantiates every kernel
+# tests/device/kernels_*.cpp (kernels_all.cpp and its parts), so that the device-compile check instantiates every kernel
 # (issue 25). Helpers with no dispatch of their own are listed in _voigt_not_launchers.
 #   cmake -P tests/device/launchers.cmake        CTest device.launchers: fails, naming the missing
 #   include(launchers.cmake); voigt_check_launchers(<mode>)   <mode>: WARNING (tests/device)
@@ -17,11 +17,12 @@ set(_voigt_not_launchers withLimiter limiterNamed scalarFacesXYZ momentumStage f
 function(voigt_check_launchers mode)
   get_filename_component(_root "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../.." ABSOLUTE)
   file(GLOB _headers "${_root}/kernels/*.hpp")
-  file(READ "${_root}/tests/device/kernels_all.cpp" _calls)
-  file(READ "${_root}/tests/device/kernels_effects.cpp" _calls2)
-  string(APPEND _calls "${_calls2}")
-  file(READ "${_root}/tests/device/kernels_capillary.cpp" _calls3)
-  string(APPEND _calls "${_calls3}")
+  file(GLOB _parts "${_root}/tests/device/kernels_*.cpp")
+  set(_calls "")
+  foreach(_p IN LISTS _parts)
+    file(READ "${_p}" _part)
+    string(APPEND _calls "${_part}")
+  endforeach()
   set(_missing "")
   foreach(_h IN LISTS _headers)
     file(STRINGS "${_h}" _lines REGEX "^inline [^(]* [A-Za-z_][A-Za-z0-9_]*\\(")

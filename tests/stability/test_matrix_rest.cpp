@@ -57,6 +57,20 @@ TEST(StabilityRest, ColumnRatio1000) {
   EXPECT_EQ(r.reasons["gravity"], steps); // the adaptive default, not a tightened dt
 }
 
+// The same column with navier_stokes.viscous: semi_implicit (an option): the implicit
+// correction of a resting state is the solve of a round-off right-hand side and must leave
+// it at rest. dt stays the gravity limit (the air's viscous limit, 4.5 s, is far above it).
+TEST(StabilityRest, ColumnRatio1000SemiImplicitViscosity) {
+  const long steps = restSteps();
+  auto r = runCase("rest_column_ratio1000_semi_implicit", cellsText(32, 32, 32),
+                   restScene("rest_column_si", 1, 1, 1, 32, 32, 32, 0.5, 1000, 1) +
+                       "navier_stokes: {viscous: semi_implicit}\n",
+                   steps, Energy::Gravity, 999 * 0.5);
+  r.worstDivRatio = 0;
+  expectRest(r, steps, restBound());
+  EXPECT_EQ(r.reasons["gravity"], steps);
+}
+
 // The second scene: 1.5 x 1 x 0.75 (48 x 32 x 24), interface at y = 0.37 (off the
 // faces), a fixed sphere of radius 0.15 half submerged (obstacles). Before reinit.zone_tolerance
 // it grew from step ~4500 on, tenfold every ~700 steps (re-initialising the smoothing zone next

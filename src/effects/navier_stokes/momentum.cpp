@@ -11,12 +11,17 @@
 // then prescribed components are re-imposed (oscillating walls: their values at
 // t^{n+1}). tau comes from the Stress stage (viscous here; elasticity blends its
 // own in, Eq. 9), f from the Forces stage.
+// navier_stokes.viscous: semi_implicit makes each of the two Euler stages implicit-explicit
+// in a scalar viscous operator K (kernels/viscous_implicit.hpp): stage 1 u1 += d1 with
+// (M - dt K) d1 = dt K (u1 - u^n); stage 2 u* += d2 with (M - dt K) d2 = dt K (u* - (u^n + u1)/2).
 #include <algorithm>
 
 #include "core/boundary.hpp"
 #include "core/field_names.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
+#include "effects/navier_stokes/viscous_implicit.hpp"
 #include "kernels/momentum.hpp"
+#include "kernels/viscous_implicit.hpp"
 
 namespace voigt {
 
@@ -25,6 +30,19 @@ namespace {
 void refreshGhosts(State& st, const VecField& u) {
   exchangeVelocity(st);
   fillVelocityGhosts(st.grid, *st.scene, u);
+}
+
+// Semi-implicit viscosity (header): the stage increments and their corrections.
+void implicitStage1(State& st, ImplicitViscosity& iv, const VecField& u, const VecField& u0, const VecField& q) {
+  viscous::stageIncrement(u, u0, q, nodeRange(st.grid));
+  iv.correct(st, q, u);
+}
+void keepStage(const VecField& u, const VecField& q) { // q = u1 for stage 2
+  for (int d = 0; d < 3; ++d) Kokkos::deep_copy(q.c[d], u.c[d]);
+}
+void implicitStage2(State& st, ImplicitViscosity& iv, const VecField& u, const VecField& u0, const VecField& q) {
+  viscous::secondStageIncrement(u, u0, q, nodeRange(st.grid));
+  iv.correct(st, q, u);
 }
 } // namespace
 
@@ -112,12 +130,17 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
 
   // Each stage update stores u^n (stage 1) and re-imposes the prescribed components
   // in its own pass (kernels/momentum.hpp).
+  const VecField q = semiImplicit_ ? ImplicitViscosity::increment(st) : VecField();
+  if (semiImplicit_) implicit_.prepare(st);
   if (!conservative_) {
     evaluateRhs(st, p, u, rhs);
     momentumStage1(u, u0, rhs, dt, mask, val, nodes);
+    if (semiImplicit_) implicitStage1(st, implicit_, u, u0, q);
     st.velocityHalosCurrent = false;
+    if (semiImplicit_) keepStage(u, q);
     evaluateRhs(st, p, u, rhs);
     momentumStage2(u, u0, rhs, dt, mask, val, nodes);
+    if (semiImplicit_) implicitStage2(st, implicit_, u, u0, q);
     st.velocityHalosCurrent = false;
     return;
   }
@@ -126,11 +149,14 @@ void NavierStokes::momentum(State& st, Pipeline& p) {
   Field rr = st.fields.scalar("momentum_density_rhs");
   evaluateRhs(st, p, u, rhs, &r0);
   momentumStage1Conservative(r0, rr, r1, u, u0, rhs, dt, mask, val, nodes);
+  if (semiImplicit_) implicitStage1(st, implicit_, u, u0, q);
   st.velocityHalosCurrent = false;
+  if (semiImplicit_) keepStage(u, q);
   exchangeWithVelocity(st, r1); // r1 and u1 in one message (refreshGhosts then skips u's)
   fillNodeGhostsEven(g, r1);
   evaluateRhs(st, p, u, rhs, &r1);
   momentumStage2Conservative(r0, r1, rr, u, u0, rhs, dt, mask, val, nodes);
+  if (semiImplicit_) implicitStage2(st, implicit_, u, u0, q);
   st.velocityHalosCurrent = false;
 }
 

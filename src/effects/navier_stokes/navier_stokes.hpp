@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "effects/effect.hpp"
+#include "effects/navier_stokes/viscous_implicit.hpp"
 #include "kernels/advection.hpp"
 #include "kernels/advection_faces.hpp"
 #include "kernels/stress.hpp"
@@ -50,6 +51,8 @@ class NavierStokes : public Effect {
   const Scene* scene_ = nullptr;
   Limiter limiter_ = Limiter::MinMod;
   bool conservative_ = false; // momentum advection in conservative form
+  bool semiImplicit_ = false; // navier_stokes.viscous: semi_implicit
+  ImplicitViscosity implicit_;
   std::unique_ptr<PoissonSolver> solver_;
   FluxScratch flux_; // face fluxes of the momentum advection
   Pipeline* pipeline_ = nullptr;

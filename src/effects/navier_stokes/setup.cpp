@@ -30,6 +30,11 @@ void NavierStokes::configure(const Scene& s, const Published& pub) {
   // level_set's (validated there; "" without it).
   const bool varying = !pub.phase.empty() && s.materials.at(pub.phase).density != s.fluidMaterial().density;
   conservative_ = s.advection.momentum == "conservative" || (s.advection.momentum == "auto" && varying);
+  // Scene section navier_stokes: viscous (explicit, the default | semi_implicit: the viscous
+  // limit on dt goes, kernels/viscous_implicit.hpp).
+  const Section ns = topSection(s, "navier_stokes");
+  semiImplicit_ = ns.choice("viscous", "explicit", {"explicit", "semi_implicit"}) == "semi_implicit";
+  ns.finish();
   bool haveOutflow = false;
   VOIGT_UNROLL
   for (int i = 0; i < 6; ++i) {
@@ -70,6 +75,7 @@ void NavierStokes::declareFields(FieldStore& f) const {
     }
   for (const char* n : {"poisson_rhs", "divergence", field::density, field::viscosity})
     f.declareDerived(n, Centring::Cell, 1, me);
+  if (semiImplicit_) ImplicitViscosity::declareFields(f, me);
 }
 
 void NavierStokes::setup(State& st) {
@@ -191,7 +197,7 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
   const double nuMax = maxKinematicViscosity(mu, rho, cellRange(g));
   double nuG = nuMax;
   MPI_Allreduce(&nuMax, &nuG, 1, MPI_DOUBLE, MPI_MAX, g.comm);
-  if (nuG > 0) {
+  if (nuG > 0 && !semiImplicit_) {
     // The full term div(mu (grad u + grad u^T)) reaches 8 nu / h_min^2 on some
     // modes (the projection removes them in a fluid, a solid's stress keeps
     // them): flattened cells with elasticity blew up at 0.69x the plain limit
@@ -219,6 +225,14 @@ void NavierStokes::summary(const State& st, nlohmann::json& j) const {
                   {"null_modes", solver_ ? solver_->nullModeCount() : 0},
                   {"matrix_nonzeros", solver_ ? solver_->globalNonzeros() : 0},
                   {"operator", scene_->projection.op == ProjectionCfg::Op::Exact ? "exact" : "approximate"}};
+  if (semiImplicit_) {
+    const double v = get("viscous_solves");
+    j["viscous"] = {{"step", "semi_implicit"},
+                    {"solves", v},
+                    {"iterations_mean", v > 0 ? get("viscous_iterations") / v : 0},
+                    {"iterations_max", get("viscous_iterations_max")},
+                    {"unconverged", get("viscous_unconverged")}};
+  }
 }
 
 } // namespace voigt

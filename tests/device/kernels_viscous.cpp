@@ -1,0 +1,40 @@
+// Device check, fourth part (see kernels_all.cpp): the semi-implicit viscosity kernels
+// (kernels/viscous_implicit.hpp), one CG iteration on f.u's increment against f.u2, with
+// f.mu and f.rho from fill() and the x- wall plane's nodes prescribed.
+#include "kernels/viscous_implicit.hpp"
+#include "check.hpp"
+
+namespace voigt {
+namespace check {
+
+void viscous(const Grid& g, Fields& f) {
+  auto vec = [&](const char* n) { return VecField{mk(g, n), mk(g, n), mk(g, n)}; };
+  const VecField c = vec("vi_edge"), q = vec("vi_q"), x = vec("vi_x"), r = vec("vi_r"), p = vec("vi_p");
+  const Field m = mk(g, "vi_mass"), invDiag = mk(g, "vi_inv_diag");
+  const IntField mask("vi_mask", g.ext[0], g.ext[1], g.ext[2]);
+  const int wall = g.ng;
+  for_each3("vi_mask", nodeRange(g), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = i == wall ? 7 : 0; });
+  const double dt = 0.01;
+  viscous::edgeCoefficients(g, f.mu, c, nodeRange(g, 1));
+  put("viscous.edgeCoefficients", sumAbs(c, nodeRange(g)));
+  viscous::massAndDiagonal(g, f.rho, c, dt, m, invDiag, nodeRange(g));
+  put("viscous.massAndDiagonal", sumAbs(m, nodeRange(g)) + sumAbs(invDiag, nodeRange(g)));
+  viscous::stageIncrement(f.u, f.u2, q, nodeRange(g, 1));
+  put("viscous.stageIncrement", sumAbs(q, nodeRange(g)));
+  const viscous::TwoSums s0 = viscous::startResidual(mask, c, invDiag, dt, q, r, x, p, nodeRange(g));
+  put("viscous.startResidual", s0.a + s0.b + sumAbs(r, nodeRange(g)));
+  const double pq = viscous::applyOperator(mask, c, m, dt, p, q, nodeRange(g));
+  put("viscous.applyOperator", pq + sumAbs(q, nodeRange(g)));
+  const viscous::TwoSums s1 = viscous::updateIterate(invDiag, s0.b / pq, p, q, x, r, nodeRange(g));
+  put("viscous.updateIterate", s1.a + s1.b + sumAbs(x, nodeRange(g)));
+  viscous::newDirection(invDiag, s1.b / s0.b, r, p, nodeRange(g));
+  put("viscous.newDirection", sumAbs(p, nodeRange(g)));
+  const VecField u = vec("vi_u");
+  viscous::secondStageIncrement(f.u, f.u2, u, nodeRange(g));
+  put("viscous.secondStageIncrement", sumAbs(u, nodeRange(g)));
+  viscous::addCorrection(x, 0.5, u, nodeRange(g));
+  put("viscous.addCorrection", sumAbs(u, nodeRange(g)));
+}
+
+} // namespace check
+} // namespace voigt
