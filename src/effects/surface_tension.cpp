@@ -6,7 +6,8 @@
 // the predictor's coef (sigma kappa G H - G p) is zero to round-off.
 // `form: csf` is the plain force for comparison: sigma kappa(psi) H'(psi) grad psi at the
 // nodes from the cell curvature where it is, without the pressure's stencil.
-// Scene section `surface_tension`: sigma (N/m, required), form (balanced | csf).
+// Scene section `surface_tension`: sigma (N/m, required), form (balanced | csf), curvature
+// (level_set | height_function: kernels/height_function.hpp).
 // Time step (Brackbill): dt <= sqrt(rho_mean h^3 / (2 pi sigma)), rho_mean the phases' mean.
 #include <cmath>
 
@@ -15,6 +16,7 @@
 #include "core/halo.hpp"
 #include "effects/effect.hpp"
 #include "kernels/curvature.hpp"
+#include "kernels/height_function.hpp"
 #include "scene/reader.hpp"
 
 namespace voigt {
@@ -30,6 +32,7 @@ class SurfaceTension : public Effect {
     const Section sec = topSection(s, "surface_tension");
     sigma_ = sec.requireNumber("sigma", Range::nonNegative());
     balanced_ = sec.choice("form", "balanced", {"balanced", "csf"}) == "balanced";
+    heights_ = sec.choice("curvature", "level_set", {"level_set", "height_function"}) == "height_function";
     sec.finish();
     geo_ = pub.levelSet;
     rhoMean_ = 0.5 * (s.materials.at(pub.phase).density + s.fluidMaterial().density);
@@ -37,6 +40,8 @@ class SurfaceTension : public Effect {
   void declareFields(FieldStore& f) const override {
     f.declare(field::psi, Centring::Cell, 1, name());
     f.declareDerived(kCurvature, Centring::Cell, 1, name());
+    if (heights_)
+      for (const char* n : {"curvature_heights", "curvature_heights_ok"}) f.declareDerived(n, Centring::Cell, 1, name());
     if (!balanced_) return; // the plain CSF needs the cell curvature only
     for (const char* n : {"capillary_H", "curvature_cell", "curvature_known", "curvature_tmp", "curvature_tmp_known"})
       f.declareDerived(n, Centring::Cell, 1, name());
@@ -56,8 +61,15 @@ class SurfaceTension : public Effect {
                                            : "sigma kappa H'(psi) grad psi (plain CSF)",
           [this](State& st) { force(st); });
   }
-  void summary(const State&, nlohmann::json& j) const override {
-    j["surface_tension"] = {{"sigma", sigma_}, {"form", balanced_ ? "balanced" : "csf"}};
+  static double counter(const State& st, const char* k) {
+    auto it = st.counters.find(k);
+    return it == st.counters.end() ? 0.0 : it->second;
+  }
+  void summary(const State& st, nlohmann::json& j) const override {
+    j["surface_tension"] = {{"sigma", sigma_},
+                            {"form", balanced_ ? "balanced" : "csf"},
+                            {"curvature", heights_ ? "height_function" : "level_set"}};
+    if (heights_) j["surface_tension"]["height_function_fallbacks"] = counter(st, "height_function_fallbacks");
   }
 
  private:
@@ -69,12 +81,12 @@ class SurfaceTension : public Effect {
     const Field psi = st.fields.scalar(field::psi);
     Field ext = st.fields.scalar(kCurvature);
     if (!balanced_) { // the plain CSF uses the cell curvature where it is
-      curvature::cellCurvature(g, psi, ext, cellRange(g, 1));
+      cellCurvature(st, psi, ext);
       return;
     }
     Field kc = st.fields.scalar("curvature_cell"), known = st.fields.scalar("curvature_known");
     Field tmp = st.fields.scalar("curvature_tmp"), tmpKnown = st.fields.scalar("curvature_tmp_known");
-    curvature::cellCurvature(g, psi, kc, cellRange(g, 1));
+    cellCurvature(st, psi, kc);
     curvature::heavisideField(psi, st.fields.scalar("capillary_H"), geo_.kappa(g), cellRange(g, 2));
     curvature::interfaceCurvature(psi, kc, ext, known, cellRange(g));
     // Each sweep reaches one more layer: the zone plus one cell, on both sides.
@@ -93,6 +105,26 @@ class SurfaceTension : public Effect {
     fillCellGhostsEven(g, st.fields.scalar(kCurvature));
   }
 
+  // kappa at the owned cells and one layer beyond: of psi, and with curvature: height_function
+  // the heights' value at the interface cells (kernels/height_function.hpp).
+  void cellCurvature(State& st, const Field& psi, const Field& kap) {
+    const Grid& g = st.grid;
+    curvature::cellCurvature(g, psi, kap, cellRange(g, 1));
+    if (!heights_) return;
+    Field hk = st.fields.scalar("curvature_heights"), ok = st.fields.scalar("curvature_heights_ok");
+    Kokkos::deep_copy(hk, kap);
+    const double local = curvature::heightCurvature(g, psi, hk, ok, cellRange(g));
+    double global = 0;
+    MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, g.comm);
+    st.counters["height_function_fallbacks"] += global;
+    st.halo->exchange(std::vector<Field>{hk, ok}, 1);
+    fillCellGhostsEven(g, hk);
+    fillCellGhostsEven(g, ok);
+    curvature::fallbackCurvature(hk, ok, kap, cellRange(g));
+    st.halo->exchange(kap, 1);
+    fillCellGhostsEven(g, kap);
+  }
+
   void force(State& st) {
     const Grid& g = st.grid;
     const Field psi = st.fields.scalar(field::psi), kap = st.fields.scalar(kCurvature);
@@ -106,6 +138,7 @@ class SurfaceTension : public Effect {
 
   double sigma_ = 0, rhoMean_ = 1;
   bool balanced_ = true;
+  bool heights_ = false; // curvature: height_function
   LevelSetGeometry geo_;
 };
 } // namespace

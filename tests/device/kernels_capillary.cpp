@@ -2,6 +2,7 @@
 // (kernels/curvature.hpp). Every call's result becomes a checksum (check.hpp). psi is the
 // level-set field of fill(); the extension runs two sweeps.
 #include "kernels/curvature.hpp"
+#include "kernels/height_function.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/reinit.hpp"
 #include "check.hpp"
@@ -15,6 +16,13 @@ void capillary(const Grid& g, Fields& f) {
   const Field ext2 = mk(g, "ext2"), known2 = mk(g, "known2");
   curvature::cellCurvature(g, f.psi, kap, cellRange(g, 1));
   put("cellCurvature", sumAbs(kap, cellRange(g)));
+  // surface_tension.curvature: height_function on a copy (the level set's kappa elsewhere).
+  const Field kapH = mk(g, "kap_heights"), okH = mk(g, "ok_heights"), kapF = mk(g, "kap_fallback");
+  Kokkos::deep_copy(kapH, kap);
+  const double fallbacks = curvature::heightCurvature(g, f.psi, kapH, okH, cellRange(g, 1));
+  put("heightCurvature", sumAbs(kapH, cellRange(g)) + sumAbs(okH, cellRange(g)) + fallbacks);
+  curvature::fallbackCurvature(kapH, okH, kapF, cellRange(g));
+  put("fallbackCurvature", sumAbs(kapF, cellRange(g)));
   curvature::interfaceCurvature(f.psi, kap, ext, known, cellRange(g, 1));
   put("interfaceCurvature", sumAbs(ext, cellRange(g)) + sumAbs(known, cellRange(g)));
   curvature::extendSweep(g, f.psi, ext, known, ext2, known2, reach, cellRange(g));
