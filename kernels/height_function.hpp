@@ -1,10 +1,14 @@
 #pragma once
 // Height-function curvature of the zero level (surface_tension.curvature: height_function).
-// In a cell next to the interface (a face neighbour of the other sign) the axis a of the
-// largest |d psi / dx_a| is the height direction; on the 3 x 3 columns along a around the cell
-// (offsets in the two other axes b, c) the zero of psi is found within 2 cells of the cell's
-// plane (cubic interpolation through the 4 values around the sign change, quadratic at the
-// window's ends), giving heights y(p, q), p, q in {-1, 0, 1}; then (Popinet 2009, Eq. 5)
+// Two passes. columnCrossings: every cell records, per axis, the zero of psi nearest to it
+// along that axis within 2 cells (cubic interpolation through the 4 values around the sign
+// change, quadratic at the window's ends) and psi's sign below it; the records are exchanged
+// two layers deep. heightCurvature: in a cell next to the interface (a face neighbour of the
+// other sign) the axis a of the largest |d psi / dx_a| is the height direction; on the 3 x 3
+// columns along a around the cell (offsets in the two other axes b, c) each column's height is
+// the record of the first of its cells at 0, -1, +1, -2, +2 along a that has one (so a column
+// reaches 4 cells from the cell's plane with two ghost layers), giving y(p, q); then
+// (Popinet 2009, Eq. 5)
 //   kappa = -+ [y_bb (1 + y_c^2) + y_cc (1 + y_b^2) - 2 y_b y_c y_bc] / (1 + y_b^2 + y_c^2)^(3/2)
 // with central differences; the sign makes a sphere with psi > 0 inside 2 / R. The heights are
 // where the zero level is, not what psi's profile across it looks like, so a zone distorted
@@ -46,10 +50,45 @@ KOKKOS_INLINE_FUNCTION double columnZero(const double* v, int lo, int n, int m) 
   return s;
 }
 
-// kap = the height-function curvature at the interface cells of r (psi fresh 2 layers beyond
-// r) and ok = 1 there; fallbacks keep kap with ok = 0, other cells kap with ok = -1. Returns
-// the number of fallbacks on this rank.
-inline double heightCurvature(const Grid& g, const Field& psi, const Field& kap, const Field& ok, Range3 r) {
+// A crossing record: 0 for none, else o (10 + c), c in [-2, 2] the zero's position along the
+// axis relative to the cell (cells), o = +1 where psi > 0 below it (on the lower side).
+KOKKOS_INLINE_FUNCTION double crossingRecord(const double* v) {
+  const int order[4] = {-1, 0, -2, 1}; // the sign change nearest the cell first
+  int m = 99;
+  VOIGT_UNROLL
+  for (int t = 0; t < 4; ++t) {
+    const int e = order[t];
+    m = (m == 99 && ((v[e + 2] > 0) != (v[e + 3] > 0))) ? e : m;
+  }
+  if (m == 99) return 0.0;
+  // Cubic through m-1..m+2 inside the window, else the quadratic at its end.
+  const int lo = m <= -1 ? -2 : (m == 0 ? -1 : 0), n = (m == -1 || m == 0) ? 4 : 3;
+  const double c = columnZero(v, lo, n, m);
+  return (v[m + 2] > 0 ? 1.0 : -1.0) * (10 + c);
+}
+
+// rec.c[a] = the crossing record along axis a at the cells of r (psi fresh 2 layers beyond r).
+inline void columnCrossings(const Field& psi, const VecField& rec, Range3 r) {
+  const Field r0 = rec.c[0], r1 = rec.c[1], r2 = rec.c[2];
+  for_each3("column_crossings", r, KOKKOS_LAMBDA(int i, int j, int k) {
+    double vx[5], vy[5], vz[5];
+    VOIGT_UNROLL
+    for (int m = -2; m <= 2; ++m) {
+      vx[m + 2] = psi(i + m, j, k);
+      vy[m + 2] = psi(i, j + m, k);
+      vz[m + 2] = psi(i, j, k + m);
+    }
+    r0(i, j, k) = crossingRecord(vx);
+    r1(i, j, k) = crossingRecord(vy);
+    r2(i, j, k) = crossingRecord(vz);
+  });
+}
+
+// kap = the height-function curvature at the interface cells of r (psi fresh 1 layer and
+// rec 2 layers beyond r) and ok = 1 there; fallbacks keep kap with ok = 0, other cells kap
+// with ok = -1. Returns the number of fallbacks on this rank.
+inline double heightCurvature(const Grid& g, const Field& psi, const VecField& rec, const Field& kap, const Field& ok,
+                              Range3 r) {
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   const double kmax = 1 / minOf(h0, minOf(h1, h2));
   double fallbacks = 0;
@@ -73,34 +112,29 @@ inline double heightCurvature(const Grid& g, const Field& psi, const Field& kap,
         const int a = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2), b = (a + 1) % 3, c = (a + 2) % 3;
         const double ha = a == 0 ? h0 : a == 1 ? h1 : h2, hb = b == 0 ? h0 : b == 1 ? h1 : h2;
         const double hc = c == 0 ? h0 : c == 1 ? h1 : h2;
+        const Field ra = rec.c[a];
         double y[3][3];
         int orient = 0;
         bool good = true;
         for (int p = -1; p <= 1; ++p)
           for (int q = -1; q <= 1; ++q) {
-            double v[5];
-            for (int m = -2; m <= 2; ++m) {
+            const int order[5] = {0, -1, 1, -2, 2};
+            double w = 0;
+            int t0 = 0;
+            for (int t = 0; t < 5 && w == 0; ++t) {
               int l[3] = {i, j, k};
-              l[a] += m, l[b] += p, l[c] += q;
-              v[m + 2] = psi(l[0], l[1], l[2]);
+              l[a] += order[t], l[b] += p, l[c] += q;
+              w = ra(l[0], l[1], l[2]);
+              t0 = order[t];
             }
-            // The sign change closest to the cell's plane: between -1|0, 0|1, then -2|-1, 1|2.
-            const int order[4] = {-1, 0, -2, 1};
-            int m = 99;
-            for (int t = 0; t < 4 && m == 99; ++t) {
-              const int e = order[t];
-              if ((v[e + 2] > 0) != (v[e + 3] > 0)) m = e;
-            }
-            if (m == 99) {
+            if (w == 0) {
               good = false;
               continue;
             }
-            const int o = v[m + 2] > 0 ? 1 : -1; // 1: psi > 0 below the crossing (inside below)
+            const int o = w > 0 ? 1 : -1;
             good &= orient == 0 || orient == o;
             orient = o;
-            // Cubic through m-1..m+2 inside the window, else the quadratic at its end.
-            const int lo = m <= -1 ? -2 : (m == 0 ? -1 : 0), n = (m == -1 || m == 0) ? 4 : 3;
-            y[p + 1][q + 1] = columnZero(v, lo, n, m) * ha;
+            y[p + 1][q + 1] = (t0 + km::fabs(w) - 10) * ha;
           }
         if (!good) {
           ok(i, j, k) = 0;

@@ -40,8 +40,10 @@ class SurfaceTension : public Effect {
   void declareFields(FieldStore& f) const override {
     f.declare(field::psi, Centring::Cell, 1, name());
     f.declareDerived(kCurvature, Centring::Cell, 1, name());
-    if (heights_)
+    if (heights_) {
       for (const char* n : {"curvature_heights", "curvature_heights_ok"}) f.declareDerived(n, Centring::Cell, 1, name());
+      f.declareDerived("curvature_crossings", Centring::Cell, 3, name());
+    }
     if (!balanced_) return; // the plain CSF needs the cell curvature only
     for (const char* n : {"capillary_H", "curvature_cell", "curvature_known", "curvature_tmp", "curvature_tmp_known"})
       f.declareDerived(n, Centring::Cell, 1, name());
@@ -112,8 +114,13 @@ class SurfaceTension : public Effect {
     curvature::cellCurvature(g, psi, kap, cellRange(g, 1));
     if (!heights_) return;
     Field hk = st.fields.scalar("curvature_heights"), ok = st.fields.scalar("curvature_heights_ok");
+    const VecField rec = st.fields.vector("curvature_crossings");
+    // Records beyond walls stay 0 (none): only owned cells are computed, the halo fills the rest.
+    for (int d = 0; d < 3; ++d) Kokkos::deep_copy(rec.c[d], 0.0);
+    curvature::columnCrossings(psi, rec, cellRange(g));
+    st.halo->exchange(rec); // two layers: a column reads records 2 cells along its axis
     Kokkos::deep_copy(hk, kap);
-    const double local = curvature::heightCurvature(g, psi, hk, ok, cellRange(g));
+    const double local = curvature::heightCurvature(g, psi, rec, hk, ok, cellRange(g));
     double global = 0;
     MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, g.comm);
     st.counters["height_function_fallbacks"] += global;

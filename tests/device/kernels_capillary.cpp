@@ -19,7 +19,10 @@ void capillary(const Grid& g, Fields& f) {
   // surface_tension.curvature: height_function on a copy (the level set's kappa elsewhere).
   const Field kapH = mk(g, "kap_heights"), okH = mk(g, "ok_heights"), kapF = mk(g, "kap_fallback");
   Kokkos::deep_copy(kapH, kap);
-  const double fallbacks = curvature::heightCurvature(g, f.psi, kapH, okH, cellRange(g, 1));
+  const VecField rec{mk(g, "rec_x"), mk(g, "rec_y"), mk(g, "rec_z")};
+  curvature::columnCrossings(f.psi, rec, cellRange(g));
+  put("columnCrossings", sumAbs(rec, cellRange(g)));
+  const double fallbacks = curvature::heightCurvature(g, f.psi, rec, kapH, okH, cellRange(g));
   put("heightCurvature", sumAbs(kapH, cellRange(g)) + sumAbs(okH, cellRange(g)) + fallbacks);
   curvature::fallbackCurvature(kapH, okH, kapF, cellRange(g));
   put("fallbackCurvature", sumAbs(kapF, cellRange(g)));

@@ -29,9 +29,9 @@ TEST(HeightFunction, StaticCylinderLaplaceJump) {
 
 // The octant of a sphere of R = 0.25 on 32^3 cells (16 per radius): 2 sigma / R = 8 Pa within
 // 1 % (measured 7.992). The columns next to the symmetry planes read psi's mirrored ghosts.
-// The currents after 20 steps are ten times the level set's (Ca 1.2e-4 against 1.3e-5): in 3-D
-// the 5-cell columns miss the interface where the normal is near a diagonal (fallbacks,
-// SphereCurvatureOfADistance); asserted bounded only (Ca < 1e-3).
+// The currents after 20 steps are 18 times the level set's (Ca 2.4e-4 against 1.3e-5): in 3-D
+// the 3 x 3 heights are least accurate where the normal is near a diagonal
+// (SphereCurvatureOfADistance); asserted bounded only (Ca < 1e-3).
 TEST(HeightFunction, StaticSphereLaplaceJump) {
   const std::string scene = "domain: {lo: [0,0,0], hi: [0.5,0.5,0.5], cells: [32,32,32]}\n"
                             "boundaries: {default: {type: no_slip}, x-: {type: slip}, y-: {type: slip}, z-: {type: slip}}\n"
@@ -69,7 +69,7 @@ TEST(HeightFunction, CurrentsDecay) {
 // 0.0728, La = 7e5, to t = 1.2 s (2400 steps of the capillary limit). With the level set's
 // curvature the kinetic energy grows 1000x to 1e-3 of the surface energy and Ca = max|u|
 // mu_water / sigma reaches 6.5e-4 (README, "A resting water drop in air"); with the heights
-// measured 2.3e-5 and 3.4e-5. Asserted: 1e-4 for both, ten times below what the level set gives.
+// measured 1.2e-5 and 3.4e-5. Asserted: 1e-4 for both, ten times below what the level set gives.
 TEST(HeightFunction, InertialDropStaysQuiet) {
   const std::string scene =
       "domain: {lo: [0, 0, 0], hi: [0.02, 0.02, 0.00125], cells: [32, 32, 2], ranks: [0, 0, 1]}\n"
@@ -96,10 +96,12 @@ TEST(HeightFunction, InertialDropStaysQuiet) {
 
 // The heights' curvature of an exact distance to a sphere (psi = R - |x - c|, 2 / R exact) at
 // 8 and 16 cells per radius, on one rank (the kernel alone; ghosts filled from the formula).
-// Measured: mean relative error 4.0e-3 and 1.1e-3 (max 2.7e-2, 1.8e-2), with 17 % and 11 % of
-// the interface cells falling back (their 3 x 3 columns leave the +-2-cell window near the
-// diagonals: the window is the ghost depth). Asserted: mean below 1 % and 0.3 %, falling at
-// least 3x (second order: 4x), max below 5 %.
+// Measured: mean relative error 8.6e-3 and 1.6e-3, max 0.165 and 0.042, with 14 and 0
+// fallbacks among 1348 and 5339 interface cells. The largest errors sit where the normal is
+// near (1, 1, 1) / sqrt 3: every axis then sees slopes near 1 both ways and the 3 x 3 heights
+// span 4-5 cells (a 3 x 3 stencil's known weakness at 8 cells per radius; with 5-cell columns,
+// which left those cells to their neighbours, the max was 0.027 with 17 % fallbacks). Asserted:
+// mean below 1.5 % and 0.3 %, falling at least 3x (second order: 4x), max below 25 % and 6 %.
 namespace {
 struct CurvatureStats {
   double meanErr = 0, maxErr = 0, fallbacks = 0, cells = 0;
@@ -116,7 +118,10 @@ CurvatureStats sphereCurvature(int n, double R) {
         psi(i, j, k) = R - std::sqrt(x * x + y * y + z * z);
       });
   CurvatureStats s;
-  s.fallbacks = curvature::heightCurvature(g, psi, kap, ok, cellRange(g));
+  const VecField rec{Field("rx", g.ext[0], g.ext[1], g.ext[2]), Field("ry", g.ext[0], g.ext[1], g.ext[2]),
+                     Field("rz", g.ext[0], g.ext[1], g.ext[2])};
+  curvature::columnCrossings(psi, rec, cellRange(g, 0));
+  s.fallbacks = curvature::heightCurvature(g, psi, rec, kap, ok, cellRange(g, -2));
   auto hk = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), kap);
   auto ho = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ok);
   const Range3 r = cellRange(g);
@@ -141,9 +146,9 @@ TEST(HeightFunction, SphereCurvatureOfADistance) {
     if (test::worldRank() == 0)
       std::printf("[ heights ] R = %d cells: kappa error mean %.2e, max %.2e over %.0f cells; %.0f fallbacks\n", cells,
                   s[q].meanErr, s[q].maxErr, s[q].cells, s[q].fallbacks);
-    EXPECT_LT(s[q].maxErr, 0.05);
+    EXPECT_LT(s[q].maxErr, q == 0 ? 0.25 : 0.06);
   }
-  EXPECT_LT(s[0].meanErr, 0.01);
+  EXPECT_LT(s[0].meanErr, 0.015);
   EXPECT_LT(s[1].meanErr, 0.003);
   EXPECT_LT(s[1].meanErr, s[0].meanErr / 3);
 }
