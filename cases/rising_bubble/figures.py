@@ -26,18 +26,22 @@ def digests(d, case):
     return sorted(out, key=lambda g: g["n"])
 
 
-def plot_runs(ax, digs):
+# Variants drawn beside the defaults' runs (run --variant NAME: digests_NAME/), dashed.
+VARIANTS = [("semi_implicit", "semi-implicit viscosity")]
+
+
+def plot_runs(ax, digs, prefix="Voigt", style="-"):
     """Each run's circularity, centroid and rise velocity series and its final shape."""
     for g in digs:
-        lab = "Voigt h = 1/%d" % g["n"]
-        ax[0].plot(g["t"], g["circularity"], label=lab)
-        ax[1].plot(g["t"], g["centroid_y"], label=lab)
-        ax[2].plot(g["t"], g["rise_velocity"], label=lab)
+        lab = "%s h = 1/%d" % (prefix, g["n"])
+        ax[0].plot(g["t"], g["circularity"], style, label=lab)
+        ax[1].plot(g["t"], g["centroid_y"], style, label=lab)
+        ax[2].plot(g["t"], g["rise_velocity"], style, label=lab)
         if g.get("shape"):
-            ax[3].plot(g["shape"][0], g["shape"][1], label=lab + " (t = %.2f)" % g["shape_t"])
+            ax[3].plot(g["shape"][0], g["shape"][1], style, label=lab + " (t = %.2f)" % g["shape_t"])
 
 
-def case_figure(case, digs, ref_series, path):
+def case_figure(case, digs, ref_series, path, variants=()):
     fig, ax = plt.subplots(1, 4, figsize=(17, 4.2))
     rt, rc, ry, rv = ref_series(case)
     for a, f, name in zip(ax[:3], (rc, ry, rv), ("circularity", "centroid y", "rise velocity")):
@@ -45,6 +49,8 @@ def case_figure(case, digs, ref_series, path):
         a.set_xlabel("t")
         a.set_title(name)
     plot_runs(ax, digs)
+    for name, vdigs in variants:
+        plot_runs(ax, vdigs, name, "--")
     ref = os.path.join(HERE, "reference", "c%dg3l4s.txt" % case)
     xs, ys = [], []
     for line in open(ref):
@@ -111,10 +117,13 @@ def figure3d(digs, refs, path):
 
 def figures(a, refs, ref_series):
     rows = list(csv.DictReader(open(a.csv))) if os.path.exists(a.csv) else []
+    base = os.path.dirname(a.digests.rstrip("/"))
     for case in (1, 2):
         digs = digests(a.digests, case)
+        variants = [(label, digests(os.path.join(base, "digests_" + v), case)) for v, label in VARIANTS
+                    if os.path.isdir(os.path.join(base, "digests_" + v))]
         if digs:
-            case_figure(case, digs, ref_series, os.path.join(a.o, "case%d.png" % case))
+            case_figure(case, digs, ref_series, os.path.join(a.o, "case%d.png" % case), [x for x in variants if x[1]])
     if rows:
         convergence_figure(rows, refs, os.path.join(a.o, "convergence.png"))
     d3 = os.path.join(os.path.dirname(a.digests.rstrip("/")), "digests3d")
