@@ -1,11 +1,11 @@
 #pragma once
 // Level-set geometry shared by the level_set and reinit effects: the smoothing
 // half-width kappa of Eq. (4) and the narrow band, both given in cells in the
-// scene's `level_set` section and turned into lengths with the smallest h.
+// scene's `level_set` section (read by effects/level_set/geometry.hpp) and turned into
+// lengths with the smallest h.
 #include <algorithm>
 
 #include "core/grid.hpp"
-#include "scene/scene.hpp"
 
 namespace voigt {
 
@@ -16,9 +16,5 @@ struct LevelSetGeometry {
   double kappa(const Grid& g) const { return kappaCells * hMin(g); }
   double band(const Grid& g) const { return bandCells * hMin(g); }
 };
-
-// Reads level_set.smoothing and level_set.band (validated; the level_set effect
-// owns the rest of the section and rejects unknown keys).
-LevelSetGeometry levelSetGeometry(const Scene& s);
 
 } // namespace voigt

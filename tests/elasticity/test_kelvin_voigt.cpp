@@ -37,7 +37,7 @@
 #include "effects/elasticity/elasticity.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/reductions.hpp"
-#include "levelset/params.hpp"
+#include "effects/level_set/geometry.hpp"
 #include "support/flow.hpp"
 
 using namespace voigt;

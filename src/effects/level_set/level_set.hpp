@@ -8,10 +8,10 @@
 //   volume.cpp     global volume correction (Corrections stage, after reinit)
 #include "core/field_names.hpp"
 #include "effects/effect.hpp"
+#include "effects/level_set/geometry.hpp"
+#include "effects/level_set/shape_compiler.hpp"
 #include "kernels/advection.hpp"
 #include "levelset/fast_marching.hpp"
-#include "levelset/params.hpp"
-#include "levelset/shapes.hpp"
 
 namespace voigt {
 

@@ -1,4 +1,4 @@
-#include "levelset/params.hpp"
+#include "effects/level_set/geometry.hpp"
 
 #include "scene/reader.hpp"
 
