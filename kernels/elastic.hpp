@@ -62,6 +62,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/index_space.hpp"
+#include "kernels/elastic_stretch.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/projection_ops.hpp"
 #include "kernels/reductions.hpp"
@@ -165,8 +166,11 @@ KOKKOS_INLINE_FUNCTION void rotateSym(const double Q[3][3], const double s[6], d
 // 1.0 is the paper's Eq. (13) as printed (kept for the test that shows it fails).
 // rot: each half rotation by Q tau Q^T with Q the Cayley transform of (dt/2) W
 // (default), or explicitly, tau + (dt/2)(W tau - tau W) (erratum 2 literally).
+// neoHookean (elasticity.model: neo_hookean): the stretching terms of the upper-convected
+// rate added to the middle increment (kernels/elastic_stretch.hpp).
 KOKKOS_INLINE_FUNCTION void bensonUpdate(double tau[6], const double L[3][3], double mu, double dt,
-                                         double spinScale = 0.5, Rotation rot = Rotation::Cayley) {
+                                         double spinScale = 0.5, Rotation rot = Rotation::Cayley,
+                                         bool neoHookean = false) {
   double W[3][3];
   VOIGT_UNROLL
   for (int p = 0; p < 3; ++p)
@@ -179,6 +183,7 @@ KOKKOS_INLINE_FUNCTION void bensonUpdate(double tau[6], const double L[3][3], do
   } else {
     addSpin(W, tau, 0.5 * dt, half); // tau^{n+1/2}
   }
+  if (neoHookean) addStretching(half, L, mu, dt); // kernels/elastic_stretch.hpp
   half[0] += dt * mu * 2 * L[0][0]; // tau* = tau^{n+1/2} + dt mu D, D = L + L^T
   half[1] += dt * mu * 2 * L[1][1];
   half[2] += dt * mu * 2 * L[2][2];
@@ -222,7 +227,8 @@ constexpr double kAll = -1e300; // jaumannUpdate's `above`: every listed cell, p
 // one path, and a short-circuit read of psi was a masked load; GCC kept the loop scalar.
 template <Rotation R, bool Masked>
 void jaumannRuns(const Grid& g, const VecField& u, const SymTensorField& tau, double mu, double dt, const IntList& cell,
-                 int n, const IntList& runs, int nRuns, double spinScale, const Field& psi, double above) {
+                 int n, const IntList& runs, int nRuns, double spinScale, const Field& psi, double above,
+                 bool neoHookean) {
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];
   const double q0 = 4 * g.h[0], q1 = 4 * g.h[1], q2 = 4 * g.h[2];
   const FlatField fp = Masked ? flat(psi) : FlatField();
@@ -247,7 +253,7 @@ void jaumannRuns(const Grid& g, const VecField& u, const SymTensorField& tau, do
         for (int comp = 0; comp < 3; ++comp) L[comp][0] /= q0, L[comp][1] /= q1, L[comp][2] /= q2;
         double s[6] = {t0(p), t1(p), t2(p), t3(p), t4(p), t5(p)};
         const double s0[6] = {s[0], s[1], s[2], s[3], s[4], s[5]};
-        bensonUpdate(s, L, mu, dt, spinScale, R);
+        bensonUpdate(s, L, mu, dt, spinScale, R, neoHookean);
         t0(p) = on ? s[0] : s0[0], t1(p) = on ? s[1] : s0[1], t2(p) = on ? s[2] : s0[2];
         t3(p) = on ? s[3] : s0[3], t4(p) = on ? s[4] : s0[4], t5(p) = on ? s[5] : s0[5];
       });
@@ -256,17 +262,18 @@ void jaumannRuns(const Grid& g, const VecField& u, const SymTensorField& tau, do
 inline void jaumannUpdate(const Grid& g, const VecField& u, const SymTensorField& tau, double mu, double dt,
                           const IntList& cell, int n, const IntList& runs, int nRuns, double spinScale = 0.5,
                           Rotation rot = Rotation::Cayley, const Field& psi = Field(),
-                          double above = kAll) {
+                          double above = kAll, bool neoHookean = false) {
   if (n == 0) return;
   const bool masked = above > kAll;
+  const bool nh = neoHookean;
   if (rot == Rotation::Cayley && masked)
-    jaumannRuns<Rotation::Cayley, true>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
+    jaumannRuns<Rotation::Cayley, true>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above, nh);
   else if (rot == Rotation::Cayley)
-    jaumannRuns<Rotation::Cayley, false>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
+    jaumannRuns<Rotation::Cayley, false>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above, nh);
   else if (masked)
-    jaumannRuns<Rotation::Explicit, true>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
+    jaumannRuns<Rotation::Explicit, true>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above, nh);
   else
-    jaumannRuns<Rotation::Explicit, false>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above);
+    jaumannRuns<Rotation::Explicit, false>(g, u, tau, mu, dt, cell, n, runs, nRuns, spinScale, psi, above, nh);
 }
 
 // tau += H(psi) tau_S on the listed cells: Eq. (9)/(14). tau already holds the

@@ -1,6 +1,8 @@
 // Device check, fourth part (see kernels_all.cpp): the semi-implicit viscosity kernels
 // (kernels/viscous_implicit.hpp), one CG iteration on f.u's increment against f.u2, with
-// f.mu and f.rho from fill() and the x- wall plane's nodes prescribed.
+// f.mu and f.rho from fill() and the x- wall plane's nodes prescribed; and the neo-Hookean
+// stress update (kernels/elastic.hpp, elasticity.model: neo_hookean) on a copy of f.tau2.
+#include "kernels/elastic.hpp"
 #include "kernels/viscous_implicit.hpp"
 #include "check.hpp"
 
@@ -34,6 +36,17 @@ void viscous(const Grid& g, Fields& f) {
   put("viscous.secondStageIncrement", sumAbs(u, nodeRange(g)));
   viscous::addCorrection(x, 0.5, u, nodeRange(g));
   put("viscous.addCorrection", sumAbs(u, nodeRange(g)));
+  // elasticity.model: neo_hookean: every owned cell, Cayley rotations.
+  SymTensorField t;
+  for (int c = 0; c < 6; ++c) {
+    t.c[c] = mk(g, "nh_tau");
+    Kokkos::deep_copy(t.c[c], f.tau2.c[c]);
+  }
+  const elastic::IntList list("nh_list", size_t(g.cellsOwned())), runs("nh_runs", size_t(g.cellsOwned()));
+  const int n = elastic::buildActiveList(g, f.psi, -1e300, cellRange(g), list), nRuns = listRuns(list, n, runs);
+  elastic::jaumannUpdate(g, f.u, t, 1.0, 1e-2, list, n, runs, nRuns, 0.5, elastic::Rotation::Cayley, Field(),
+                         elastic::kAll, true);
+  put("jaumannUpdate.neo_hookean", sumAbs(t, cellRange(g)));
 }
 
 } // namespace check

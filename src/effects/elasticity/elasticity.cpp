@@ -8,6 +8,7 @@
 //                band: cells beyond H > 0 where the stress kernels run (default 3),
 //                rotation: cayley | explicit (default cayley): how Eq. (16)'s half
 //                  rotations are applied (kernels/elastic.hpp header),
+//                model: hypoelastic | neo_hookean (default hypoelastic, the paper's),
 //                fluid_side: integrate | extend | blend (default extend): the
 //                  stress of the band's fluid side (elasticity.hpp header)}
 #include "effects/elasticity/elasticity.hpp"
@@ -58,6 +59,9 @@ void Elasticity::configure(const Scene& s, const Published& pub) {
   bandCells_ = sec.number("band", 3, Range::nonNegative());
   rotation_ = sec.choice("rotation", "cayley", {"cayley", "explicit"}) == "explicit" ? elastic::Rotation::Explicit
                                                                                       : elastic::Rotation::Cayley;
+  // model: the paper's hypoelastic solid (Jaumann rate, Eq. 13) or neo-Hookean, tau = mu_S (B - I)
+  // (kernels/elastic.hpp, bensonUpdate; issue 53).
+  neoHookean_ = sec.choice("model", "hypoelastic", {"hypoelastic", "neo_hookean"}) == "neo_hookean";
   side_ = sec.choice("fluid_side", "extend", {"integrate", "extend", "blend"});
   extend_ = side_ != "integrate";
   const Section is = sec.section("initial_stress");
@@ -181,6 +185,7 @@ void Elasticity::summary(const State& st, nlohmann::json& j) const {
                      {"kelvin_voigt_viscosity", etaKV_},
                      {"band_cells", bandCells_},
                      {"rotation", rotation_ == elastic::Rotation::Explicit ? "explicit" : "cayley"},
+                     {"model", neoHookean_ ? "neo_hookean" : "hypoelastic"},
                      {"fluid_side", side_},
                      {"steps", steps_},
                      {"stress_cells_mean", mean},

@@ -102,6 +102,7 @@ class Elasticity : public Effect {
   LevelSetGeometry geo_; // level_set's smoothing and band (Published)
   double mu_ = 0, rho_ = 1, etaKV_ = 0;
   elastic::Rotation rotation_ = elastic::Rotation::Cayley;
+  bool neoHookean_ = false; // elasticity.model: neo_hookean
   double tau0_[6] = {0, 0, 0, 0, 0, 0};
   double bandCells_ = 3, kappa_ = 0, threshold_ = 0, cfl_ = 0.5, hmin_ = 1;
   Limiter limiter_ = Limiter::MinMod;

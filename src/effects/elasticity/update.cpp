@@ -48,7 +48,7 @@ void Elasticity::update(State& st, double spinScale) {
   const int nRuns = listRuns(cells, n, owned_runs_);
   stressHalosCurrent_ = false;
   elastic::jaumannUpdate(st.grid, u, solidStressField(st.fields), mu_, st.dt, cells, n, owned_runs_, nRuns, spinScale,
-                         rotation_);
+                         rotation_, Field(), elastic::kAll, neoHookean_);
   if (extend_) extend(st);
 }
 
