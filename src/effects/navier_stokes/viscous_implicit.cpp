@@ -37,15 +37,17 @@ VecField ImplicitViscosity::increment(State& st) { return st.fields.vector(kVect
 void ImplicitViscosity::prepare(State& st) {
   const Grid& g = st.grid;
   VecField c = st.fields.vector(kEdge);
-  // Edges beyond a wall keep 0: only owned nodes are computed, the halo fills the rest.
-  for (int d = 0; d < 3; ++d) Kokkos::deep_copy(c.c[d], 0.0);
+  // Ghosts beyond walls are never written (only owned nodes are computed, the halo fills the
+  // rest), so zeroing once keeps the edges there 0 and the direction's ghosts finite.
+  if (!zeroed_) {
+    const VecField p = st.fields.vector(kVectors[2]);
+    for (int d = 0; d < 3; ++d) Kokkos::deep_copy(c.c[d], 0.0), Kokkos::deep_copy(p.c[d], 0.0);
+    zeroed_ = true;
+  }
   viscous::edgeCoefficients(g, st.fields.scalar(field::viscosity), c, nodeRange(g));
   st.halo->exchange(c);
   viscous::massAndDiagonal(g, st.fields.scalar(field::density), c, st.dt, st.fields.scalar(kMass),
                            st.fields.scalar(kInvDiag), nodeRange(g));
-  // The direction's ghosts beyond walls are read with coefficient 0: keep them finite.
-  const VecField p = st.fields.vector(kVectors[2]);
-  for (int d = 0; d < 3; ++d) Kokkos::deep_copy(p.c[d], 0.0);
 }
 
 void ImplicitViscosity::correct(State& st, const VecField& q, const VecField& u) {

@@ -22,6 +22,9 @@ class ImplicitViscosity {
 
   static constexpr double kTolerance = 1e-8; // relative 2-norm of the residual
   static constexpr int kMaxIterations = 1000;
+
+ private:
+  bool zeroed_ = false; // the scratch's wall ghosts set to 0 (prepare)
 };
 
 } // namespace voigt
