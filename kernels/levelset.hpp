@@ -102,6 +102,20 @@ inline void blendProperties(const Field& psi, double kappa, double rho1, double 
       });
 }
 
+// Several level sets (level_sets:): each after the first is laid over the properties the
+// earlier ones left, rho <- H rho_i + (1 - H) rho (same for mu, or its inverse with harmonic),
+// so where two overlap the later one's phase wins (the priority order) and where one
+// alone is positive this is Eq. (2) between its phase and what lies beneath.
+inline void blendOver(const Field& psi, double kappa, double rho1, double mu1, const Field& rho, const Field& mu,
+                      Range3 cells, bool harmonic = false) {
+  const double r1 = harmonic ? 1 / mu1 : 0;
+  for_each3("blend_over", cells, KOKKOS_LAMBDA(int i, int j, int k) {
+        const double H = smoothedHeaviside(psi(i, j, k), kappa);
+        rho(i, j, k) = H * rho1 + (1 - H) * rho(i, j, k);
+        mu(i, j, k) = harmonic ? 1 / (H * r1 + (1 - H) / mu(i, j, k)) : H * mu1 + (1 - H) * mu(i, j, k);
+      });
+}
+
 struct PhaseMeasures {
   double volume = 0;      // integral of H(psi): phase 1 volume
   double sharpVolume = 0; // cells with psi > 0 (sharp Heaviside)

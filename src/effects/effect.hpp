@@ -14,17 +14,34 @@
 #include "core/state.hpp"
 #include "levelset/params.hpp"
 #include "scene/load.hpp"
+#include "scene/reader.hpp"
 
 namespace voigt {
+
+// One level set as its owner (level_set) resolved it: `level_set:` gives one with name ""
+// and field "psi"; each `level_sets:` entry gives one named NAME with field "psi_NAME".
+struct LevelSetInfo {
+  std::string name;  // "" for the single `level_set:` section
+  std::string field; // its cell field in the FieldStore (and outputs, checkpoints)
+  std::string phase; // the material where psi > 0
+  LevelSetGeometry geometry; // smoothing half-width and re-initialisation band of Eq. (4), in cells
+  std::string label() const { return name.empty() ? "level_set" : name; } // for messages
+};
 
 // What an effect resolves from its own scene section and shares with the others:
 // the owner fills it in publish(), before any effect's configure(), and the others
 // read it there, never by parsing a section they do not own.
 struct Published {
-  // level_set: the material where psi > 0 ("" without level_set), and the smoothing
-  // half-width and re-initialisation band of Eq. (4), in cells.
-  std::string phase;
-  LevelSetGeometry levelSet;
+  std::vector<LevelSetInfo> levelSets; // in the scene's order (the blending's priority order)
+
+  // The level sets an effect acts on, from its section's key `level_set`: a name, or a list of
+  // names where `list` allows several. Absent: the only level set; with several, all of them
+  // if `allByDefault`, else an error asking for the key. Unknown or repeated names, a list
+  // where one is expected, or a scene without level sets are errors at that key.
+  std::vector<LevelSetInfo> select(const Section& sec, bool list, bool allByDefault = false) const;
+  LevelSetInfo one(const Section& sec) const { return select(sec, false).front(); }
+  // Does any level set's phase differ in density from the scene's fluid?
+  bool varyingDensity(const Scene& s) const;
 };
 
 class Effect {

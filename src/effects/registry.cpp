@@ -22,7 +22,7 @@ const std::vector<EffectInfo>& effectRegistry() {
        makeNavierStokes},
       {"gravity", "body force from the scene's gravity vector", "", makeGravity},
       {"obstacles", "fixed or moving rigid bodies: prescribed node velocities", "", makeObstacles},
-      {"level_set", "two phases: MUSCL advection of psi (Eq. 1), properties blended by H(psi) (Eq. 2-4)",
+      {"level_set", "phases: MUSCL advection of psi (Eq. 1; one, or several named), properties blended by H(psi) (Eq. 2-4)",
        "level_set", makeLevelSet},
       {"reinit", "Sussman re-initialisation of psi with the local volume constraint (Eq. 17-21)", "reinit",
        makeReinit},
@@ -48,6 +48,7 @@ std::set<std::string> effectSections() {
   std::set<std::string> s;
   for (auto& e : effectRegistry())
     if (!e.section.empty()) s.insert(e.section);
+  s.insert("level_sets"); // level_set's named form (effects/level_set/level_set.hpp)
   return s;
 }
 

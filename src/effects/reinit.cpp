@@ -3,7 +3,8 @@
 // Scene section `reinit`: interval (steps), iterations, dtau (cells),
 // volume_constraint, subcell_fix (Russo & Smereka; off by default, see
 // kernels/reinit.hpp), far_bound, zone_curvature and zone_tolerance (settled smoothing-zone cells keep their
-// advected values: kernels/reinit.hpp, settledCell). kappa and band come from the `level_set` section.
+// advected values: kernels/reinit.hpp, settledCell), level_set (a name or a list: the level sets it
+// runs on; default every one). kappa and band come from each level set's section.
 #include <algorithm>
 #include <memory>
 
@@ -21,8 +22,8 @@ class Reinit : public Effect {
   std::string name() const override { return "reinit"; }
   std::vector<std::string> dependsOn() const override { return {"level_set"}; }
   void configure(const Scene& s, const Published& pub) override {
-    geo_ = pub.levelSet;
     const Section r = topSection(s, "reinit");
+    ls_ = pub.select(r, true, true);
     interval_ = r.integer("interval", 1, 1, 1000000);
     p_.iterations = int(r.integer("iterations", 2, 1, 1000));
     p_.dtauCells = r.number("dtau", 0.5, {0, 1, true, false});
@@ -45,11 +46,17 @@ class Reinit : public Effect {
     p_.zoneCurvature = r.boolean("zone_curvature", capillary);
     r.finish();
   }
-  void declareFields(FieldStore& f) const override { f.declare(field::psi, Centring::Cell, 1, name()); }
+  void declareFields(FieldStore& f) const override {
+    for (const LevelSetInfo& l : ls_) f.declare(l.field, Centring::Cell, 1, name());
+  }
   void setup(State& st) override {
-    p_.kappa = geo_.kappa(st.grid);
-    p_.band = geo_.band(st.grid);
-    re_ = std::make_unique<Reinitializer>(st.grid, p_);
+    re_.clear();
+    for (const LevelSetInfo& l : ls_) {
+      ReinitParams p = p_;
+      p.kappa = l.geometry.kappa(st.grid);
+      p.band = l.geometry.band(st.grid);
+      re_.push_back(std::make_unique<Reinitializer>(st.grid, p));
+    }
     // Time-series columns are fixed at the first row: declare ours now.
     st.diag["reinit_band_cells"] = 0.0;
     st.diag["reinit_grad_error"] = 0.0;
@@ -59,7 +66,14 @@ class Reinit : public Effect {
     // been advected when this runs: re-initialise after every interval-th step.
     p.add(Stage::Corrections, name(), "Eikonal + local volume constraint, Eq. (17)-(21)", [this](State& st) {
       if ((st.step + 1) % interval_ != 0) return;
-      const ReinitStats s = re_->run(*st.halo, st.fields.scalar(field::psi));
+      ReinitStats s;
+      for (size_t i = 0; i < ls_.size(); ++i) { // band cells summed, gradient error the largest
+        const ReinitStats si = re_[i]->run(*st.halo, st.fields.scalar(ls_[i].field));
+        if (i == 0) s = si;
+        if (i == 0) continue;
+        s.bandCells += si.bandCells;
+        s.maxGradError = std::max(s.maxGradError, si.maxGradError);
+      }
       ++calls_;
       bandTotal_ += double(s.bandCells);
       st.diag["reinit_band_cells"] = double(s.bandCells);
@@ -89,12 +103,12 @@ class Reinit : public Effect {
   }
 
  private:
-  LevelSetGeometry geo_;
+  std::vector<LevelSetInfo> ls_;
   ReinitParams p_;
   long interval_ = 1;
   long long calls_ = 0;
   double bandTotal_ = 0;
-  std::unique_ptr<Reinitializer> re_;
+  std::vector<std::unique_ptr<Reinitializer>> re_;
 };
 } // namespace
 

@@ -39,6 +39,11 @@
 //                                  below contact_gap * h and ends when it exceeds 1.5 times
 //                                  that (hysteresis, so one touch is one event).
 // summary.json "solid_body": first contact time and every contact start per target.
+// Several level sets (level_sets:): `solid_body: {level_set: [a, b]}` measures each named
+// body with columns solid_a_..., solid_b_... and the gap between each pair (kernels/contact.hpp),
+//   solid_gap_a_b, solid_contact_a_b   as above, the pair's gap: min of -(psi_a + psi_b) over cells
+//                                  inside both bands (kernels/contact.hpp); negative: overlap
+// and summary.json "solid_body" has "bodies" (per name, as above) and "pairs".
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -47,6 +52,7 @@
 #include "core/index_space.hpp"
 #include "effects/effect.hpp"
 #include "effects/solid_body.hpp"
+#include "kernels/contact.hpp"
 #include "kernels/heaviside.hpp"
 #include "levelset/params.hpp"
 #include "scene/reader.hpp"
@@ -54,6 +60,61 @@
 namespace voigt {
 
 namespace {
+
+// One gap that is tracked for contacts: a body against an obstacle, a face or another body.
+struct Contact {
+  explicit Contact(std::string n = "") : name(std::move(n)) {}
+  std::string name;
+  double gap = 0, minGap = 1e300, minGapT = 0, first = -1;
+  int in = 0;
+  std::vector<double> events;
+  void update(double g, double time, double thr) {
+    gap = g;
+    if (gap < minGap) minGap = gap, minGapT = time;
+    if (!in && gap < thr) {
+      in = 1;
+      if (first < 0) first = time;
+      if (events.size() < 1000) events.push_back(time);
+    } else if (in && gap > 1.5 * thr) {
+      in = 0;
+    }
+  }
+  nlohmann::json summary() const {
+    return {{"first_contact_time", first < 0 ? nlohmann::json(nullptr) : nlohmann::json(first)},
+            {"contact_start_times", events},
+            {"min_gap", minGap},
+            {"min_gap_time", minGapT},
+            {"gap", gap}};
+  }
+};
+
+// The checkpoint's form of a list of contacts (as before several bodies: one array per member).
+nlohmann::json contactState(const std::vector<Contact>& cs) {
+  nlohmann::json j = {{"first", nlohmann::json::array()}, {"events", nlohmann::json::array()},
+                      {"in", nlohmann::json::array()},    {"min_gap", nlohmann::json::array()},
+                      {"min_gap_time", nlohmann::json::array()}};
+  for (const Contact& c : cs) {
+    j["first"].push_back(c.first), j["events"].push_back(c.events), j["in"].push_back(c.in);
+    j["min_gap"].push_back(c.minGap), j["min_gap_time"].push_back(c.minGapT);
+  }
+  return j;
+}
+void loadContacts(std::vector<Contact>& cs, const nlohmann::json& j) {
+  for (size_t q = 0; q < cs.size(); ++q) {
+    cs[q].first = j.at("first").at(q).get<double>();
+    cs[q].events = j.at("events").at(q).get<std::vector<double>>();
+    cs[q].in = j.at("in").at(q).get<int>();
+    cs[q].minGap = j.at("min_gap").at(q).get<double>();
+    cs[q].minGapT = j.at("min_gap_time").at(q).get<double>();
+  }
+}
+
+struct Body {
+  LevelSetInfo info;
+  std::string prefix; // "solid_" for the single level_set, "solid_NAME_" for named bodies
+  double rho = 0;
+  std::vector<Contact> contacts; // one per target
+};
 
 class SolidBody : public Effect {
  public:
@@ -64,6 +125,7 @@ class SolidBody : public Effect {
     contacts_ = sec.boolean("contacts", true);
     contactCells_ = sec.number("contact_gap", 1.0, Range::positive());
     bending_ = sec.boolean("bending", true);
+    std::vector<std::string> names;
     if (contacts_) {
       if (s.obstacles.size() + 6 > size_t(kSolidTargets)) sec.fail("contacts", "too many obstacles to track");
       for (size_t i = 0; i < s.obstacles.size(); ++i) {
@@ -73,7 +135,8 @@ class SolidBody : public Effect {
         t.axis = o.axis;
         t.r = o.radius;
         for (int d = 0; d < 3; ++d) t.c[d] = o.center[d], t.lo[d] = o.lo[d], t.hi[d] = o.hi[d];
-        add(t, "obstacle" + std::to_string(i));
+        targets_.t[targets_.n++] = t;
+        names.push_back("obstacle" + std::to_string(i));
       }
       for (int f = 0; f < 6; ++f) {
         if (s.periodic(f / 2)) continue;
@@ -81,16 +144,27 @@ class SolidBody : public Effect {
         t.kind = 3 + f % 2;
         t.axis = f / 2;
         t.c[t.axis] = f % 2 ? s.hi[t.axis] : s.lo[t.axis];
-        add(t, std::string(1, char('x' + f / 2)) + (f % 2 ? "+" : "-"));
+        targets_.t[targets_.n++] = t;
+        names.push_back(std::string(1, char('x' + f / 2)) + (f % 2 ? "+" : "-"));
       }
     }
+    bodies_.clear();
+    for (const LevelSetInfo& l : pub.select(sec, true)) {
+      Body b;
+      b.info = l;
+      b.prefix = l.name.empty() ? "solid_" : "solid_" + l.name + "_";
+      if (s.materials.count(l.phase)) b.rho = s.materials.at(l.phase).density;
+      for (const std::string& n : names) b.contacts.emplace_back(n);
+      bodies_.push_back(b);
+    }
+    pairs_.clear();
+    for (size_t a = 0; a < bodies_.size(); ++a)
+      for (size_t b = a + 1; b < bodies_.size(); ++b) pairs_.emplace_back(bodies_[a].info.name + "_" + bodies_[b].info.name);
     sec.finish();
-    geo_ = pub.levelSet;
-    if (s.materials.count(pub.phase)) rhoSolid_ = s.materials.at(pub.phase).density;
     g_ = s.gravity;
   }
   void declareFields(FieldStore& f) const override {
-    f.declare(field::psi, Centring::Cell, 1, name());
+    for (const Body& b : bodies_) f.declare(b.info.field, Centring::Cell, 1, name());
     f.declare(field::velocity, Centring::Node, 3, name());
   }
   void setup(State& st) override {
@@ -101,9 +175,9 @@ class SolidBody : public Effect {
     binR_ = int(std::ceil(0.5 * std::sqrt(diag2) / hmin_)) + 1; // columns cover the half diagonal
     const int nb = 2 * binR_ + 1;
     if (bending_) bins_ = Kokkos::View<double* [4], MemSpace>("solid_body_columns", size_t(nb) * nb);
-    const size_t n = names_.size();
-    gap_.assign(n, 0.0), minGap_.assign(n, 1e300), minGapT_.assign(n, 0.0), first_.assign(n, -1.0);
-    in_.assign(n, 0), events_.assign(n, {});
+    for (Body& b : bodies_)
+      for (Contact& c : b.contacts) c = Contact{c.name};
+    for (Contact& c : pairs_) c = Contact{c.name};
     measure(st, st.t); // fills every column before the first time-series row
   }
   void registerTasks(Pipeline& p) override {
@@ -111,58 +185,79 @@ class SolidBody : public Effect {
           [this](State& st) { measure(st, st.t + st.dt); }); // t advances after the stages
   }
   void summary(const State& st, nlohmann::json& j) const override {
-    nlohmann::json c = nlohmann::json::object();
-    for (size_t q = 0; q < names_.size(); ++q)
-      c[names_[q]] = {{"first_contact_time", first_[q] < 0 ? nlohmann::json(nullptr) : nlohmann::json(first_[q])},
-                      {"contact_start_times", events_[q]},
-                      {"min_gap", minGap_[q]},
-                      {"min_gap_time", minGapT_[q]},
-                      {"gap", gap_[q]}};
-    j["solid_body"] = {{"contact_gap", contactCells_ * hmin_}, {"contact_gap_cells", contactCells_},
-                       {"contacts", c}};
+    auto contacts = [](const std::vector<Contact>& cs) {
+      nlohmann::json c = nlohmann::json::object();
+      for (const Contact& x : cs) c[x.name] = x.summary();
+      return c;
+    };
+    j["solid_body"] = {{"contact_gap", contactCells_ * hmin_}, {"contact_gap_cells", contactCells_}};
+    if (single()) {
+      j["solid_body"]["contacts"] = contacts(bodies_[0].contacts);
+      return;
+    }
+    for (const Body& b : bodies_) j["solid_body"]["bodies"][b.info.name] = {{"contacts", contacts(b.contacts)}};
+    j["solid_body"]["pairs"] = contacts(pairs_);
   }
   void saveState(nlohmann::json& j) const override {
-    j = {{"first", first_}, {"events", events_}, {"in", in_}, {"min_gap", minGap_}, {"min_gap_time", minGapT_}};
+    if (single()) {
+      j = contactState(bodies_[0].contacts);
+      return;
+    }
+    for (const Body& b : bodies_) j["bodies"][b.info.name] = contactState(b.contacts);
+    j["pairs"] = contactState(pairs_);
   }
   void loadState(const nlohmann::json& j) override {
-    first_ = j.at("first").get<std::vector<double>>();
-    events_ = j.at("events").get<std::vector<std::vector<double>>>();
-    in_ = j.at("in").get<std::vector<int>>();
-    minGap_ = j.at("min_gap").get<std::vector<double>>();
-    minGapT_ = j.at("min_gap_time").get<std::vector<double>>();
+    if (single()) return loadContacts(bodies_[0].contacts, j);
+    for (Body& b : bodies_) loadContacts(b.contacts, j.at("bodies").at(b.info.name));
+    loadContacts(pairs_, j.at("pairs"));
   }
 
  private:
-  void add(const SolidTarget& t, const std::string& n) {
-    targets_.t[targets_.n++] = t;
-    names_.push_back(n);
-  }
+  bool single() const { return bodies_.size() == 1 && bodies_[0].info.name.empty(); }
   void measure(State& st, double time);
+  void measure(State& st, Body& b, double time);
 
   bool contacts_ = true, bending_ = true;
-  double contactCells_ = 1, rhoSolid_ = 0, hmin_ = 1;
+  double contactCells_ = 1, hmin_ = 1;
   Vec3 g_{0, 0, 0};
-  LevelSetGeometry geo_;
   SolidTargets targets_;
-  std::vector<std::string> names_;
+  std::vector<Body> bodies_;
+  std::vector<Contact> pairs_; // a-b for every two bodies, in the scene's order
   int binR_ = 0;
   Kokkos::View<double* [4], MemSpace> bins_;
-  std::vector<double> gap_, minGap_, minGapT_, first_;
-  std::vector<int> in_;
-  std::vector<std::vector<double>> events_;
 };
 
 void SolidBody::measure(State& st, double time) {
+  for (Body& b : bodies_) measure(st, b, time);
   const Grid& g = st.grid;
-  const Field psi = st.fields.scalar(field::psi);
+  double diag2 = 0;
+  for (int d = 0; d < 3; ++d) diag2 += (g.hi[d] - g.lo[d]) * (g.hi[d] - g.lo[d]);
+  size_t q = 0;
+  for (size_t a = 0; a < bodies_.size(); ++a)
+    for (size_t c = a + 1; c < bodies_.size(); ++c, ++q) {
+      const Field pa = st.fields.scalar(bodies_[a].info.field), pc = st.fields.scalar(bodies_[c].info.field);
+      // Within both bands psi is a distance; farther apart than that: the domain's diagonal.
+      const double reach = std::min(bodies_[a].info.geometry.band(g), bodies_[c].info.geometry.band(g));
+      double gap = localBodyGap(pa, pc, reach, cellRange(g));
+      MPI_Allreduce(MPI_IN_PLACE, &gap, 1, MPI_DOUBLE, MPI_MIN, g.comm);
+      pairs_[q].update(std::min(gap, std::sqrt(diag2)), time, contactCells_ * hmin_);
+      st.diag["solid_gap_" + pairs_[q].name] = pairs_[q].gap;
+      st.diag["solid_contact_" + pairs_[q].name] = pairs_[q].in;
+    }
+}
+
+void SolidBody::measure(State& st, Body& body, double time) {
+  const Grid& g = st.grid;
+  const Field psi = st.fields.scalar(body.info.field);
   const VecField u = st.fields.vector(field::velocity);
-  const double kappa = geo_.kappa(g), band = 2 * hmin_, hm = hmin_;
+  const double kappa = body.info.geometry.kappa(g), band = 2 * hmin_, hm = hmin_;
   const SolidTargets tg = targets_;
   SolidAcc acc = solidMoments(g, psi, u, kappa, band, hm, tg); // moments about the domain centre r
   const double r0 = 0.5 * (g.lo[0] + g.hi[0]), r1 = 0.5 * (g.lo[1] + g.hi[1]), r2 = 0.5 * (g.lo[2] + g.hi[2]);
   MPI_Allreduce(MPI_IN_PLACE, acc.s, kSolidSums, MPI_DOUBLE, MPI_SUM, g.comm);
   MPI_Allreduce(MPI_IN_PLACE, acc.m, kSolidTargets, MPI_DOUBLE, MPI_MIN, g.comm);
   auto& dg = st.diag;
+  const std::string& P = body.prefix;
   const double W = acc.s[0];
   double c[3] = {r0, r1, r2}, e[3][3] = {{1, 0, 0}, {0, 0, 1}, {0, 1, 0}}; // e[0] thin axis, e[1], e[2]
   double vel[3] = {0, 0, 0}, tilt = 0, angle = 0, bend = 0;
@@ -185,31 +280,24 @@ void SolidBody::measure(State& st, double time) {
     if (bending_) bend = solidBending(g, psi, kappa, hmin_, binR_, bins_, c, e);
   }
   const double vol = W * g.cellVolume();
-  dg["solid_volume"] = vol;
-  dg["solid_cx"] = c[0], dg["solid_cy"] = c[1], dg["solid_cz"] = c[2];
-  dg["solid_vx"] = vel[0], dg["solid_vy"] = vel[1], dg["solid_vz"] = vel[2];
-  dg["solid_tilt_deg"] = tilt;
-  dg["solid_angle_z_deg"] = angle;
+  dg[P + "volume"] = vol;
+  dg[P + "cx"] = c[0], dg[P + "cy"] = c[1], dg[P + "cz"] = c[2];
+  dg[P + "vx"] = vel[0], dg[P + "vy"] = vel[1], dg[P + "vz"] = vel[2];
+  dg[P + "tilt_deg"] = tilt;
+  dg[P + "angle_z_deg"] = angle;
   if (bending_)
-    dg["solid_bending"] = bend;
+    dg[P + "bending"] = bend;
   else
-    dg.erase("solid_bending"); // a restart from a run that measured it: empty from here
-  dg["solid_potential_energy"] = -rhoSolid_ * vol * (g_[0] * c[0] + g_[1] * c[1] + g_[2] * c[2]);
+    dg.erase(P + "bending"); // a restart from a run that measured it: empty from here
+  dg[P + "potential_energy"] = -body.rho * vol * (g_[0] * c[0] + g_[1] * c[1] + g_[2] * c[2]);
   double diag2 = 0;
   for (int d = 0; d < 3; ++d) diag2 += (g.hi[d] - g.lo[d]) * (g.hi[d] - g.lo[d]);
   const double thr = contactCells_ * hmin_;
-  for (size_t q = 0; q < names_.size(); ++q) {
-    gap_[q] = std::min(acc.m[q], std::sqrt(diag2)); // no interface near: the domain's diagonal
-    if (gap_[q] < minGap_[q]) minGap_[q] = gap_[q], minGapT_[q] = time;
-    if (!in_[q] && gap_[q] < thr) {
-      in_[q] = 1;
-      if (first_[q] < 0) first_[q] = time;
-      if (events_[q].size() < 1000) events_[q].push_back(time);
-    } else if (in_[q] && gap_[q] > 1.5 * thr) {
-      in_[q] = 0;
-    }
-    dg["solid_gap_" + names_[q]] = gap_[q];
-    dg["solid_contact_" + names_[q]] = in_[q];
+  for (size_t q = 0; q < body.contacts.size(); ++q) {
+    Contact& ct = body.contacts[q];
+    ct.update(std::min(acc.m[q], std::sqrt(diag2)), time, thr); // no interface near: the domain's diagonal
+    dg[P + "gap_" + ct.name] = ct.gap;
+    dg[P + "contact_" + ct.name] = ct.in;
   }
 }
 

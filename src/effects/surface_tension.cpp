@@ -33,12 +33,14 @@ class SurfaceTension : public Effect {
     sigma_ = sec.requireNumber("sigma", Range::nonNegative());
     balanced_ = sec.choice("form", "balanced", {"balanced", "csf"}) == "balanced";
     heights_ = sec.choice("curvature", "level_set", {"level_set", "height_function"}) == "height_function";
+    const LevelSetInfo ls = pub.one(sec); // the interface that carries sigma (level_set: NAME)
     sec.finish();
-    geo_ = pub.levelSet;
-    rhoMean_ = 0.5 * (s.materials.at(pub.phase).density + s.fluidMaterial().density);
+    geo_ = ls.geometry;
+    psiName_ = ls.field;
+    rhoMean_ = 0.5 * (s.materials.at(ls.phase).density + s.fluidMaterial().density);
   }
   void declareFields(FieldStore& f) const override {
-    f.declare(field::psi, Centring::Cell, 1, name());
+    f.declare(psiName_, Centring::Cell, 1, name());
     f.declareDerived(kCurvature, Centring::Cell, 1, name());
     if (heights_) {
       for (const char* n : {"curvature_heights", "curvature_heights_ok"}) f.declareDerived(n, Centring::Cell, 1, name());
@@ -80,7 +82,7 @@ class SurfaceTension : public Effect {
   void curvature(State& st) {
     const Grid& g = st.grid;
     // psi's ghosts (halos and walls) are fresh: the level set's Advection stage ends refreshing them.
-    const Field psi = st.fields.scalar(field::psi);
+    const Field psi = st.fields.scalar(psiName_);
     Field ext = st.fields.scalar(kCurvature);
     if (!balanced_) { // the plain CSF uses the cell curvature where it is
       cellCurvature(st, psi, ext);
@@ -134,7 +136,7 @@ class SurfaceTension : public Effect {
 
   void force(State& st) {
     const Grid& g = st.grid;
-    const Field psi = st.fields.scalar(field::psi), kap = st.fields.scalar(kCurvature);
+    const Field psi = st.fields.scalar(psiName_), kap = st.fields.scalar(kCurvature);
     const VecField coef = st.fields.vector("proj_coef");
     if (balanced_)
       curvature::addCapillaryForce(g, psi, st.fields.scalar("capillary_H"), kap, coef, sigma_, reach(g), st.evalRhs,
@@ -147,6 +149,7 @@ class SurfaceTension : public Effect {
   bool balanced_ = true;
   bool heights_ = false; // curvature: height_function
   LevelSetGeometry geo_;
+  std::string psiName_ = field::psi;
 };
 } // namespace
 

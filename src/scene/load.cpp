@@ -233,20 +233,22 @@ void readSettings(const Section& top, Scene& sc) {
   auto& P = sc.projection;
   P.op = p.choice("operator", "exact", {"exact", "approximate"}) == "exact" ? ProjectionCfg::Op::Exact
                                                                           : ProjectionCfg::Op::Approximate;
-  long long cells = 1;
-  for (int d = 0; d < 3; ++d) cells *= sc.cells[d];
-  bool twoPhase = false;
+  const long long cells = 1LL * sc.cells[0] * sc.cells[1] * sc.cells[2];
+  bool twoPhase = false; // any level set's phase denser than the fluid?
   const bool ls = std::find(sc.effects.begin(), sc.effects.end(), "level_set") != sc.effects.end();
-  const YAML::Node phase = ls && sc.root["level_set"] ? sc.root["level_set"]["phase"] : YAML::Node();
-  if (phase && phase.IsScalar() && sc.materials.count(phase.Scalar()))
-    twoPhase = sc.materials.at(phase.Scalar()).density != sc.materials.at(sc.fluid).density;
-  // Default tolerance of the exact operator with two densities: 1e-3. CG's residual is then
-  // the divergence left, 1e-3 of what the predictor made (D u = dt (rhs - A dp), poisson.hpp);
-  // dam break 64^3 at density ratio 1000: 50 iterations a step against 236 at 1e-8, a
-  // continuity error (mean |div u| dt) of 4e-8 beside interFoam's 1e-8 to 1.3e-7 (perf/README.md,
-  // "The exact projection at a tolerance"). With one density fast diagonalization is the
-  // operator's inverse (1-2 iterations to 1e-10), and the approximate operator's residual
-  // is not the divergence: both keep 1e-8.
+  const YAML::Node& root = sc.root, many = root["level_sets"];
+  std::vector<YAML::Node> entries{root["level_set"]};
+  for (size_t i = 0; many.IsDefined() && many.IsSequence() && i < many.size(); ++i) entries.push_back(many[i]);
+  for (const YAML::Node& e : entries) {
+    const YAML::Node phase = ls && e.IsDefined() && e.IsMap() ? e["phase"] : YAML::Node();
+    if (phase && phase.IsScalar() && sc.materials.count(phase.Scalar()))
+      twoPhase |= sc.materials.at(phase.Scalar()).density != sc.materials.at(sc.fluid).density;
+  }
+  // Exact operator, two densities: tolerance 1e-3, the divergence left relative to the
+  // predictor's (D u = dt (rhs - A dp), poisson.hpp); dam break 64^3, ratio 1000: 50 its a step
+  // against 236 at 1e-8, continuity error 4e-8 beside interFoam's 1e-8 to 1.3e-7 (perf/README.md,
+  // "The exact projection at a tolerance"). One density (fast diagonalization is the inverse)
+  // and the approximate operator (residual is not the divergence) keep 1e-8.
   const bool exact = P.op == ProjectionCfg::Op::Exact;
   P.toleranceAuto = !p.has("tolerance");
   P.tolerance = p.number("tolerance", exact && twoPhase ? ProjectionCfg::kTwoPhaseExactTolerance : P.tolerance,
@@ -281,9 +283,8 @@ void readSettings(const Section& top, Scene& sc) {
   P.initialGuess = p.choice("initial_guess", fd ? "extrapolate" : "previous",
                             {"previous", "extrapolate"});
   P.matrixFree = p.boolean("matrix_free", P.matrixFree);
-  // Balanced gravity needs the exact operator: with the 7-point one the rest state of a
-  // ratio-1000 column grew tenfold every ~80 steps at the gravity dt (16^3), and without the
-  // split it decays (README, "Gravity and rest").
+  // Balanced gravity needs the exact operator: with the 7-point one a ratio-1000 column at rest
+  // grew tenfold every ~80 steps at the gravity dt (16^3) (README, "Gravity and rest").
   P.hydrostatic = p.choice("hydrostatic", exact ? "balanced" : "none", {"balanced", "none"});
   P.volumeTolerance = p.number("volume_tolerance", P.volumeTolerance, {0, 1, false, true}); // 0: off
   p.finish();

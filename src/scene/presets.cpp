@@ -78,6 +78,10 @@ std::vector<std::string> applyPreset(YAML::Node& root, const Section& top, std::
   for (const PresetKnob& k : presetKnobs(name)) {
     const std::string sec0 = k.section, path = sec0 + "." + k.key;
     if ((sec0 == "reinit" || sec0 == "level_set") && !runs(sec0)) continue;
+    if (sec0 == "level_set" && croot["level_sets"].IsDefined()) { // the named form sets its own
+      notes.push_back(path + " = " + k.value + " not applied: set it in each level_sets entry");
+      continue;
+    }
     YAML::Node sec = croot[k.section].IsDefined() ? root[k.section] : YAML::Node();
     if (sec.IsDefined() && !sec.IsNull() && !sec.IsMap()) continue; // the section reader reports it
     const YAML::Node csec = sec;

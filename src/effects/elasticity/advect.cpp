@@ -20,7 +20,7 @@ namespace voigt {
 
 void Elasticity::buildLists(State& st) {
   const Grid& g = st.grid;
-  Field psi = st.fields.scalar(field::psi);
+  Field psi = solidPsi(st); // the level sets have moved (Advection stage, setup)
   std::swap(owned_, prev_);
   nPrev_ = nOwned_;
   nOwned_ = elastic::buildActiveList(g, psi, threshold_, cellRange(g), owned_);
@@ -47,7 +47,7 @@ void Elasticity::advect(State& st) {
   buildLists(st); // psi is already at t^{n+1} (level_set advects first)
   const SymTensorField t = solidStressField(st.fields);
   VecField u = st.fields.vector(field::velocity);
-  Field psi = st.fields.scalar(field::psi);
+  Field psi = psiField(st);
   VecField on = st.fields.vector("solid_stress_old"), os = st.fields.vector("solid_stress_old_shear");
   const Field o[6] = {on.c[0], on.c[1], on.c[2], os.c[0], os.c[1], os.c[2]};
   const Range3 box = ownedBox_;
@@ -81,7 +81,7 @@ void Elasticity::advect(State& st) {
 // outside the transport), ghosts refreshed before each.
 void Elasticity::extend(State& st) {
   const SymTensorField t = solidStressField(st.fields), b = symTensorField(st.fields, "solid_stress_old");
-  Field psi = st.fields.scalar(field::psi);
+  Field psi = psiField(st);
   // Only the fluid-side cells change; both buffers hold the others' values.
   const int nSide = extension::fluidSide(psi, st.grid, owned_, nOwned_, below_, side_cells_);
   const int nRuns = listRuns(side_cells_, nSide, side_runs_);

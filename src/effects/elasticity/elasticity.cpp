@@ -20,6 +20,7 @@
 
 #include "core/boundary.hpp"
 #include "core/field_names.hpp"
+#include "kernels/contact.hpp"
 #include "levelset/params.hpp"
 #include "scene/reader.hpp"
 
@@ -42,9 +43,19 @@ SymTensorField symTensorField(const FieldStore& f, const std::string& base) {
 
 void Elasticity::configure(const Scene& s, const Published& pub) {
   scene_ = &s;
-  phase_ = pub.phase; // level_set's (validated there)
-  geo_ = pub.levelSet;
   const Section sec = topSection(s, "elasticity");
+  // level_set: the solid's level set, or a list of them (bodies of one material that touch
+  // without merging: the stress lives on their union, max psi; kernels/contact.hpp).
+  const std::vector<LevelSetInfo> ls = pub.select(sec, true);
+  phase_ = ls[0].phase; // validated by level_set
+  geo_ = ls[0].geometry;
+  psiFields_.clear();
+  for (const LevelSetInfo& l : ls) {
+    if (l.phase != phase_) sec.fail("level_set", "names level sets of different phases (" + phase_ + ", " + l.phase + "): one elastic material");
+    if (l.geometry.kappaCells != geo_.kappaCells) sec.fail("level_set", "names level sets of different smoothing");
+    psiFields_.push_back(l.field);
+  }
+  psiName_ = ls.size() == 1 ? ls[0].field : "psi_solid";
   if (!s.materials.count(phase_)) sec.fail("band", "needs level_set.phase to name the solid material");
   const Material& m = s.materials.at(phase_);
   if (!(m.shearModulus > 0)) {
@@ -76,13 +87,23 @@ void Elasticity::configure(const Scene& s, const Published& pub) {
 
 void Elasticity::declareFields(FieldStore& f) const {
   const std::string me = name();
-  f.declare(field::psi, Centring::Cell, 1, me);
+  for (const std::string& n : psiFields_) f.declare(n, Centring::Cell, 1, me);
+  if (psiFields_.size() > 1) f.declareDerived(psiName_, Centring::Cell, 1, me); // their union
   f.declare(field::velocity, Centring::Node, 3, me);
   for (const char* n : {"solid_stress", "solid_stress_shear"}) f.declare(n, Centring::Cell, 3, me);
   // Runge-Kutta stage copies and diagnostics: derived (FieldStore::Decl::derived).
   for (const char* n : {"solid_stress_old", "solid_stress_old_shear"}) f.declareDerived(n, Centring::Cell, 3, me);
   f.declareDerived("S2", Centring::Cell, 1, me);
   f.declareDerived("log10_S2", Centring::Cell, 1, me);
+}
+
+Field Elasticity::solidPsi(State& st) const {
+  Field psi = st.fields.scalar(psiName_);
+  if (psiFields_.size() == 1) return psi;
+  const Range3 all = cellRange(st.grid, st.grid.ng); // the level sets' ghosts are fresh
+  Kokkos::deep_copy(psi, st.fields.scalar(psiFields_[0]));
+  for (size_t i = 1; i < psiFields_.size(); ++i) maxInto(psi, st.fields.scalar(psiFields_[i]), all);
+  return psi;
 }
 
 void Elasticity::refreshStress(State& st) const {
@@ -122,7 +143,7 @@ void Elasticity::setup(State& st) {
 
   // Initial stress where psi > 0 (psi is set up: level_set runs first).
   const SymTensorField t = solidStressField(st.fields);
-  Field psi = st.fields.scalar(field::psi);
+  Field psi = solidPsi(st);
   elastic::initialStress(g, psi, t, tau0_);
   const double floorLog = std::log10(1e-6 * mu_) * 2; // see diagnose(): log10 of (1e-6 mu_S)^2
   Kokkos::deep_copy(st.fields.scalar("S2"), 0.0);
@@ -172,7 +193,7 @@ void Elasticity::loadState(const nlohmann::json& j) {
 void Elasticity::restored(State& st) {
   nOwned_ = elastic::buildNonzeroList(st.grid, solidStressField(st.fields), owned_);
   ownedBox_ = elastic::listBox(st.grid, owned_, nOwned_);
-  nGrown_ = elastic::buildActiveList(st.grid, st.fields.scalar(field::psi), threshold_, cellRange(st.grid, 1), grown_);
+  nGrown_ = elastic::buildActiveList(st.grid, solidPsi(st), threshold_, cellRange(st.grid, 1), grown_);
   refreshStress(st);
 }
 

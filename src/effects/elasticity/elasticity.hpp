@@ -41,6 +41,7 @@
 // advect.cpp (band list + transport), update.cpp (stress, Jaumann update, diagnostics).
 #include <string>
 
+#include "core/field_names.hpp"
 #include "effects/effect.hpp"
 #include "kernels/advection.hpp"
 #include "kernels/elastic.hpp"
@@ -98,7 +99,13 @@ class Elasticity : public Effect {
   void extend(State& st);
 
   const Scene* scene_ = nullptr;
+  // The solid's psi: its level set's field, or with several the union refreshed by solidPsi()
+  // when the level sets have moved (setup, Advection, Corrections, restart) and read after.
+  Field solidPsi(State& st) const;
+  Field psiField(const State& st) const { return st.fields.scalar(psiName_); }
   std::string phase_;
+  std::vector<std::string> psiFields_{field::psi};
+  std::string psiName_ = field::psi;
   LevelSetGeometry geo_; // level_set's smoothing and band (Published)
   double mu_ = 0, rho_ = 1, etaKV_ = 0;
   elastic::Rotation rotation_ = elastic::Rotation::Cayley;

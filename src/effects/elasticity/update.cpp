@@ -30,7 +30,7 @@
 namespace voigt {
 
 void Elasticity::addStress(State& st) {
-  elastic::addSolidStress(st.grid, st.fields.scalar(field::psi), kappa_, solidStressField(st.fields),
+  elastic::addSolidStress(st.grid, psiField(st), kappa_, solidStressField(st.fields),
                           stressField(st.fields), grown_, nGrown_);
 }
 
@@ -42,7 +42,7 @@ void Elasticity::update(State& st, double spinScale) {
   // The band's cells above below_ listed first (not masked in the kernel: the cells
   // below would cost as much as the rest, for nothing), in runs that vectorise.
   const elastic::IntList& cells = extend_ ? solid_cells_ : owned_;
-  const int n = extend_ ? extension::fluidSide(st.fields.scalar(field::psi), st.grid, owned_, nOwned_, below_,
+  const int n = extend_ ? extension::fluidSide(solidPsi(st), st.grid, owned_, nOwned_, below_,
                                                solid_cells_, true)
                         : nOwned_;
   const int nRuns = listRuns(cells, n, owned_runs_);
@@ -55,7 +55,7 @@ void Elasticity::update(State& st, double spinScale) {
 void Elasticity::diagnose(State& st) {
   const Grid& g = st.grid;
   const SymTensorField t = solidStressField(st.fields);
-  Field psi = st.fields.scalar(field::psi), S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
+  Field psi = psiField(st), S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
   double e = 0, m = 0;
   elastic::stressDiagnostics(g, t, psi, S2, lg, owned_, nOwned_, kappa_, mu_, e, m);
   double glob[2];

@@ -4,9 +4,10 @@
 
 namespace voigt {
 
-LevelSetGeometry levelSetGeometry(const Scene& s) {
+LevelSetGeometry levelSetGeometry(const Scene& s) { return levelSetGeometry(topSection(s, "level_set")); }
+
+LevelSetGeometry levelSetGeometry(const Section& ls) {
   LevelSetGeometry geo;
-  const Section ls = topSection(s, "level_set");
   geo.kappaCells = ls.number("smoothing", geo.kappaCells, {0.5, 20, false, false});
   geo.bandCells = ls.number("band", geo.bandCells, {1, 1000, false, false});
   if (geo.bandCells < geo.kappaCells + 1)

@@ -9,5 +9,8 @@ namespace voigt {
 // Reads level_set.smoothing and level_set.band (validated; the level_set effect
 // owns the rest of the section and rejects unknown keys).
 LevelSetGeometry levelSetGeometry(const Scene& s);
+class Section;
+// The same keys from one map (`level_set:` or a `level_sets:` entry).
+LevelSetGeometry levelSetGeometry(const Section& ls);
 
 } // namespace voigt

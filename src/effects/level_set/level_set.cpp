@@ -1,6 +1,8 @@
-// level_set: scene section, fields, the initial shape and its signed distance.
+// level_set: scene section(s), fields, the initial shapes and their signed distances.
 #include "effects/level_set/level_set.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "core/boundary.hpp"
@@ -11,44 +13,85 @@ namespace voigt {
 
 std::unique_ptr<Effect> makeLevelSet() { return std::make_unique<LevelSet>(); }
 
-// The phase and the band geometry, which navier_stokes, elasticity, reinit and
-// solid_body read from Published.
-void LevelSet::publish(const Scene& s, Published& pub) const {
-  const Section ls = topSection(s, "level_set");
+namespace {
+// The maps that define level sets: `level_set:` (one, unnamed) or the `level_sets:` list.
+std::vector<Section> levelSetSections(const Scene& s) {
+  const Section top(s.root, "", s.source);
+  const bool one = s.root["level_set"].IsDefined(), many = s.root["level_sets"].IsDefined();
+  if (one && many) top.fail("level_sets", "and 'level_set' both given: use one (level_set: one unnamed level set)");
+  if (!many) return {topSection(s, "level_set")};
+  std::vector<Section> out = top.list("level_sets");
+  if (out.empty()) top.fail("level_sets", "must list at least one level set");
+  return out;
+}
+
+LevelSetInfo readInfo(const Scene& s, const Section& ls, bool named) {
+  LevelSetInfo info;
+  if (named) {
+    if (!ls.has("name")) ls.fail("name", "is required: each entry of 'level_sets' is named");
+    info.name = ls.string("name", "");
+    const bool ok = !info.name.empty() && std::all_of(info.name.begin(), info.name.end(), [](char c) {
+      return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
+    });
+    if (!ok) ls.fail("name", "must be lower-case letters, digits and '_' (it names the field psi_" + info.name + ")");
+    info.field = std::string(field::psi) + "_" + info.name;
+  } else {
+    info.field = field::psi;
+  }
   if (!ls.has("phase")) ls.fail("phase", "is required: the material where psi > 0");
-  pub.phase = ls.string("phase", "");
-  if (!s.materials.count(pub.phase)) ls.fail("phase", "names no material in 'materials'");
-  if (pub.phase == s.fluid) ls.fail("phase", "must differ from 'fluid' (" + s.fluid + "), the material where psi < 0");
-  pub.levelSet = levelSetGeometry(s);
+  info.phase = ls.string("phase", "");
+  if (!s.materials.count(info.phase)) ls.fail("phase", "names no material in 'materials'");
+  if (info.phase == s.fluid)
+    ls.fail("phase", "must differ from 'fluid' (" + s.fluid + "), the material where no level set is positive");
+  info.geometry = levelSetGeometry(ls);
+  return info;
+}
+} // namespace
+
+// The phases and band geometries, which navier_stokes, elasticity, reinit, surface_tension
+// and solid_body read from Published.
+void LevelSet::publish(const Scene& s, Published& pub) const {
+  const bool named = s.root["level_sets"].IsDefined();
+  const std::vector<Section> secs = levelSetSections(s);
+  for (const Section& ls : secs) {
+    LevelSetInfo info = readInfo(s, ls, named);
+    for (const LevelSetInfo& o : pub.levelSets)
+      if (o.name == info.name) ls.fail("name", "'" + info.name + "' is used twice in 'level_sets'");
+    pub.levelSets.push_back(info);
+  }
 }
 
 void LevelSet::configure(const Scene& s, const Published& pub) {
   scene_ = &s;
-  geo_ = pub.levelSet;
-  phase_ = pub.phase;
-  const Section ls = topSection(s, "level_set");
-  for (const char* k : {"smoothing", "band", "phase"}) ls.has(k); // validated in publish()
-  rho1_ = s.materials.at(phase_).density;
-  mu1_ = s.materials.at(phase_).viscosity;
-  rho2_ = s.fluidMaterial().density;
-  mu2_ = s.fluidMaterial().viscosity;
-  shape_ = compileShape(ls, "shape", s);
-  // Default: march unless the shape is already an exact distance.
-  fastMarching_ = ls.boolean("fast_marching", !shape_.exactDistance);
-  globalCorrection_ = ls.choice("volume_correction", "global", {"global", "none"}) == "global";
-  // viscosity_blend: linear (the paper's Eq. 2) or harmonic, 1 / mu = H / mu1 + (1 - H) / mu2, the
-  // series resistance of the two fluids to a shear across the zone (cases/rising_bubble/README.md).
-  harmonicMu_ = ls.choice("viscosity_blend", "linear", {"linear", "harmonic"}) == "harmonic";
-  if (harmonicMu_ && !(mu1_ > 0 && mu2_ > 0))
-    ls.fail("viscosity_blend", "harmonic needs both phases' viscosity > 0");
+  rhoF_ = s.fluidMaterial().density;
+  muF_ = s.fluidMaterial().viscosity;
+  const std::vector<Section> secs = levelSetSections(s);
+  ls_.clear();
+  for (size_t i = 0; i < secs.size(); ++i) {
+    const Section& ls = secs[i];
+    LevelSetInstance l;
+    l.info = pub.levelSets[i];
+    for (const char* k : {"smoothing", "band", "phase", "name"}) ls.has(k); // validated in publish()
+    l.rho = s.materials.at(l.info.phase).density;
+    l.mu = s.materials.at(l.info.phase).viscosity;
+    l.shape = compileShape(ls, "shape", s);
+    // Default: march unless the shape is already an exact distance.
+    l.fastMarching = ls.boolean("fast_marching", !l.shape.exactDistance);
+    l.globalCorrection = ls.choice("volume_correction", "global", {"global", "none"}) == "global";
+    // viscosity_blend: linear (the paper's Eq. 2) or harmonic, 1 / mu = H / mu1 + (1 - H) / mu2, the
+    // series resistance of the two fluids to a shear across the zone (cases/rising_bubble/README.md).
+    l.harmonicMu = ls.choice("viscosity_blend", "linear", {"linear", "harmonic"}) == "harmonic";
+    if (l.harmonicMu && !(l.mu > 0 && muF_ > 0)) ls.fail("viscosity_blend", "harmonic needs both phases' viscosity > 0");
+    ls.finish();
+    ls_.push_back(std::move(l));
+  }
   for (int f = 0; f < 6; ++f) open_[f] = s.bc[f].type == BcType::Inflow || s.bc[f].type == BcType::Outflow;
-  ls.finish();
   limiter_ = limiterNamed(s.advection.limiter);
 }
 
 void LevelSet::declareFields(FieldStore& f) const {
-  f.declare(field::psi, Centring::Cell, 1, name());
-  f.declareDerived("psi_old", Centring::Cell, 1, name()); // the RK stage copy
+  for (const auto& l : ls_) f.declare(l.info.field, Centring::Cell, 1, name());
+  f.declareDerived("psi_old", Centring::Cell, 1, name()); // the RK stage copy, shared
 }
 
 void LevelSet::refreshGhosts(State& st, const Field& f) const {
@@ -57,50 +100,70 @@ void LevelSet::refreshGhosts(State& st, const Field& f) const {
 }
 
 void LevelSet::setup(State& st) {
-  Field psi = st.fields.scalar(field::psi);
-  evaluateShape(st.grid, shape_, psi);
-  if (fastMarching_) fm_ = fastMarching(st.grid, psi);
-  refreshGhosts(st, psi);
+  for (auto& l : ls_) {
+    Field psi = st.fields.scalar(l.info.field);
+    evaluateShape(st.grid, l.shape, psi);
+    if (l.fastMarching) l.fm = fastMarching(st.grid, psi);
+    refreshGhosts(st, psi);
+  }
   blend(st);
   diagnose(st);
-  volume0_ = volume_;
-  target_ = volume_;
-  shiftTotal_ = movedTotal_ = 0;
-  if (globalCorrection_) {
-    st.diag["volume_shift_cells"] = 0;
-    st.diag["volume_corrected"] = 0;
+  for (auto& l : ls_) {
+    l.volume0 = l.target = l.volume;
+    l.shiftTotal = l.movedTotal = 0;
+    if (l.globalCorrection) {
+      st.diag["volume_shift_cells" + l.suffix()] = 0;
+      st.diag["volume_corrected" + l.suffix()] = 0;
+    }
+    l.sharpVolume0 = l.sharpVolume;
+    l.driftMax = 0;
+    st.diag["volume_drift" + l.suffix()] = 0;
   }
-  sharpVolume0_ = sharpVolume_;
-  driftMax_ = 0;
-  st.diag["volume_drift"] = 0;
 }
 
+nlohmann::json LevelSetInstance::state() const {
+  return {{"volume0", volume0},         {"volume", volume},
+          {"sharp_volume0", sharpVolume0}, {"sharp_volume", sharpVolume},
+          {"area", area},               {"drift_max", driftMax},
+          {"fm_initial_cells", fm.initialCells}, {"fm_accepted_cells", fm.acceptedCells},
+          {"fm_seconds", fm.seconds},   {"volume_target", target},
+          {"shift_total", shiftTotal},  {"moved_total", movedTotal}};
+}
+
+void LevelSetInstance::loadState(const nlohmann::json& j) {
+  volume0 = j.at("volume0").get<double>();
+  volume = j.at("volume").get<double>();
+  sharpVolume0 = j.at("sharp_volume0").get<double>();
+  sharpVolume = j.at("sharp_volume").get<double>();
+  area = j.at("area").get<double>();
+  driftMax = j.at("drift_max").get<double>();
+  target = j.value("volume_target", volume0); // checkpoints from before the correction
+  shiftTotal = j.value("shift_total", 0.0);
+  movedTotal = j.value("moved_total", 0.0);
+  fm.initialCells = j.value("fm_initial_cells", fm.initialCells);
+  fm.acceptedCells = j.value("fm_accepted_cells", fm.acceptedCells);
+  fm.seconds = j.value("fm_seconds", fm.seconds);
+}
+
+// One level set: its object as before; several: an object per name.
 void LevelSet::saveState(nlohmann::json& j) const {
-  j = {{"volume0", volume0_}, {"volume", volume_}, {"sharp_volume0", sharpVolume0_}, {"sharp_volume", sharpVolume_},
-       {"area", area_}, {"drift_max", driftMax_}, {"fm_initial_cells", fm_.initialCells},
-       {"fm_accepted_cells", fm_.acceptedCells}, {"fm_seconds", fm_.seconds}, {"volume_target", target_},
-       {"shift_total", shiftTotal_}, {"moved_total", movedTotal_}};
+  if (single()) {
+    j = ls_[0].state();
+    return;
+  }
+  j = nlohmann::json::object();
+  for (const auto& l : ls_) j[l.info.name] = l.state();
 }
 
 void LevelSet::loadState(const nlohmann::json& j) {
-  volume0_ = j.at("volume0").get<double>();
-  volume_ = j.at("volume").get<double>();
-  sharpVolume0_ = j.at("sharp_volume0").get<double>();
-  sharpVolume_ = j.at("sharp_volume").get<double>();
-  area_ = j.at("area").get<double>();
-  driftMax_ = j.at("drift_max").get<double>();
-  target_ = j.value("volume_target", volume0_); // checkpoints from before the correction
-  shiftTotal_ = j.value("shift_total", 0.0);
-  movedTotal_ = j.value("moved_total", 0.0);
-  fm_.initialCells = j.value("fm_initial_cells", fm_.initialCells);
-  fm_.acceptedCells = j.value("fm_accepted_cells", fm_.acceptedCells);
-  fm_.seconds = j.value("fm_seconds", fm_.seconds);
+  if (single()) return ls_[0].loadState(j);
+  for (auto& l : ls_) l.loadState(j.at(l.info.name));
 }
 
 void LevelSet::registerTasks(Pipeline& p) {
   p.add(Stage::Properties, name(), "density and viscosity from H(psi), Eq. (2)-(4)", [this](State& st) { blend(st); });
   p.add(Stage::Advection, name(), "psi: SSP-RK2 + MUSCL/KT, Eq. (1)", [this](State& st) { advect(st); });
-  if (globalCorrection_)
+  if (std::any_of(ls_.begin(), ls_.end(), [](const LevelSetInstance& l) { return l.globalCorrection; }))
     p.add(Stage::Corrections, name(), "global volume correction: psi += s so that INT H(psi) = V0 - outflow",
           [this](State& st) { correctVolume(st); }, {"reinit"});
   p.add(Stage::Diagnostics, name(), "phase volumes, drift, interface area", [this](State& st) { diagnose(st); });
@@ -110,28 +173,40 @@ void LevelSet::summary(const State& st, nlohmann::json& j) const {
   double total = 1;
   VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) total *= st.grid.hi[d] - st.grid.lo[d];
-  j["volume_per_phase"] = {{phase_, volume_}, {scene_->fluid, total - volume_}};
-  j["level_set"] = {{"phase", phase_},
-                    {"smoothing_cells", geo_.kappaCells},
-                    {"band_cells", geo_.bandCells},
-                    {"shape", shape_.text},
-                    {"volume_initial", volume0_},
-                    {"volume", volume_},
-                    {"volume_drift", volume0_ != 0 ? volume_ / volume0_ - 1 : volume_},
-                    {"volume_drift_max_abs", driftMax_},
-                    {"sharp_volume_initial", sharpVolume0_},
-                    {"sharp_volume", sharpVolume_},
-                    {"interface_area", area_},
-                    {"volume_correction", globalCorrection_ ? "global" : "none"},
-                    {"volume_target", target_},
-                    {"shift_total", shiftTotal_},
-                    {"volume_corrected", volume0_ != 0 ? movedTotal_ / volume0_ : 0.0},
-                    {"viscosity_blend", harmonicMu_ ? "harmonic" : "linear"},
-                    {"fast_marching",
-                     {{"enabled", fastMarching_},
-                      {"initial_cells", fm_.initialCells},
-                      {"accepted_cells", fm_.acceptedCells},
-                      {"seconds", fm_.seconds}}}};
+  nlohmann::json perPhase = nlohmann::json::object(), each = nlohmann::json::object();
+  double fluid = total;
+  for (const auto& l : ls_) {
+    perPhase[l.info.phase] = perPhase.value(l.info.phase, 0.0) + l.volume;
+    fluid -= l.volume;
+    each[l.info.name] = {{"phase", l.info.phase},
+                         {"smoothing_cells", l.info.geometry.kappaCells},
+                         {"band_cells", l.info.geometry.bandCells},
+                         {"shape", l.shape.text},
+                         {"volume_initial", l.volume0},
+                         {"volume", l.volume},
+                         {"volume_drift", l.volume0 != 0 ? l.volume / l.volume0 - 1 : l.volume},
+                         {"volume_drift_max_abs", l.driftMax},
+                         {"sharp_volume_initial", l.sharpVolume0},
+                         {"sharp_volume", l.sharpVolume},
+                         {"interface_area", l.area},
+                         {"volume_correction", l.globalCorrection ? "global" : "none"},
+                         {"volume_target", l.target},
+                         {"shift_total", l.shiftTotal},
+                         {"volume_corrected", l.volume0 != 0 ? l.movedTotal / l.volume0 : 0.0},
+                         {"viscosity_blend", l.harmonicMu ? "harmonic" : "linear"},
+                         {"fast_marching",
+                          {{"enabled", l.fastMarching},
+                           {"initial_cells", l.fm.initialCells},
+                           {"accepted_cells", l.fm.acceptedCells},
+                           {"seconds", l.fm.seconds}}}};
+  }
+  perPhase[scene_->fluid] = fluid; // overlaps of level sets counted twice: see level_sets_overlap
+  j["volume_per_phase"] = perPhase;
+  if (single()) {
+    j["level_set"] = each[""];
+  } else {
+    j["level_sets"] = each;
+  }
 }
 
 } // namespace voigt

@@ -1,7 +1,10 @@
 #pragma once
-// The level_set effect: two phases separated by the zero level of psi (cell
-// centres). psi > 0 is phase 1, the material named in `level_set.phase`;
-// psi < 0 is the scene's `fluid` (NOTES.md erratum 4). One file per stage:
+// The level_set effect: phases separated by the zero levels of level sets (cell
+// centres). With `level_set:` one level set, psi: psi > 0 is phase 1, the material named
+// in `level_set.phase`; psi < 0 is the scene's `fluid` (NOTES.md erratum 4). With
+// `level_sets:` each named entry NAME carries its own field psi_NAME and phase; where no
+// level set is positive the material is the scene's `fluid`, and where they overlap the
+// later entry wins (the blending's priority order, advect.cpp). One file per stage:
 //   level_set.cpp  scene section, fields, initial shape + Fast Marching, summary
 //   advect.cpp     Eq. (1) advection (Advection stage), Eq. (2)-(4) blending
 //                  (Properties stage), volume and area diagnostics
@@ -14,6 +17,25 @@
 #include "levelset/fast_marching.hpp"
 
 namespace voigt {
+
+// One level set and its bookkeeping.
+struct LevelSetInstance {
+  LevelSetInfo info; // name, field, phase, geometry (Published)
+  double rho = 1, mu = 0;
+  bool harmonicMu = false;       // viscosity_blend: harmonic
+  bool fastMarching = true;
+  bool globalCorrection = true;  // volume_correction: global (default) or none
+  ShapeProgram shape;
+  FastMarchingStats fm;
+  double target = 0;             // volume the correction holds: V0 minus what left through open faces
+  double shiftTotal = 0;         // sum of |shift| over the run (length)
+  double movedTotal = 0;         // sum of |shift| x INT H' over the run (volume)
+  double volume0 = 0, volume = 0, sharpVolume0 = 0, sharpVolume = 0, area = 0, driftMax = 0;
+  // Time-series column suffix: "" for the single `level_set:`, "_NAME" for named ones.
+  std::string suffix() const { return info.name.empty() ? "" : "_" + info.name; }
+  nlohmann::json state() const;
+  void loadState(const nlohmann::json& j);
+};
 
 class LevelSet : public Effect {
  public:
@@ -28,7 +50,9 @@ class LevelSet : public Effect {
   void summary(const State& st, nlohmann::json& j) const override;
   void saveState(nlohmann::json& j) const override;
   void loadState(const nlohmann::json& j) override;
-  void restored(State& st) override { refreshGhosts(st, st.fields.scalar(field::psi)); }
+  void restored(State& st) override {
+    for (auto& l : ls_) refreshGhosts(st, st.fields.scalar(l.info.field));
+  }
 
   // Stages (public so tests can drive them).
   void advect(State& st);
@@ -38,23 +62,15 @@ class LevelSet : public Effect {
 
  private:
   void refreshGhosts(State& st, const Field& f) const;
+  bool single() const { return ls_.size() == 1 && ls_[0].info.name.empty(); }
+  void correctVolume(State& st, LevelSetInstance& l);
 
   const Scene* scene_ = nullptr;
-  LevelSetGeometry geo_;
-  std::string phase_;
-  double rho1_ = 1, mu1_ = 0, rho2_ = 1, mu2_ = 0;
-  bool harmonicMu_ = false; // level_set.viscosity_blend: harmonic
-  bool fastMarching_ = true;
-  ShapeProgram shape_;
+  std::vector<LevelSetInstance> ls_;
+  double rhoF_ = 1, muF_ = 0; // the scene's fluid, where no level set is positive
   Limiter limiter_ = Limiter::MinMod;
-  FluxScratch flux_; // face fluxes of the transport (kernels/advection_faces.hpp)
-  FastMarchingStats fm_;
-  bool globalCorrection_ = true; // level_set.volume_correction: global (default) or none
-  bool open_[6] = {};            // faces through which phase 1 may leave (inflow/outflow)
-  double target_ = 0;            // volume the correction holds: V0 minus what left through open faces
-  double shiftTotal_ = 0;        // sum of |shift| over the run (length)
-  double movedTotal_ = 0;        // sum of |shift| x INT H' over the run (volume)
-  double volume0_ = 0, volume_ = 0, sharpVolume0_ = 0, sharpVolume_ = 0, area_ = 0, driftMax_ = 0;
+  FluxScratch flux_; // face fluxes of the transport (kernels/advection_faces.hpp), shared
+  bool open_[6] = {}; // faces through which a phase may leave (inflow/outflow)
 };
 
 } // namespace voigt

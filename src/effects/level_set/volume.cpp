@@ -26,24 +26,29 @@
 namespace voigt {
 
 void LevelSet::correctVolume(State& st) {
+  for (auto& l : ls_)
+    if (l.globalCorrection) correctVolume(st, l);
+}
+
+void LevelSet::correctVolume(State& st, LevelSetInstance& l) {
   const Grid& g = st.grid;
-  Field psi = st.fields.scalar(field::psi);
-  const double kappa = geo_.kappa(g), hmin = LevelSetGeometry::hMin(g);
+  Field psi = st.fields.scalar(l.info.field);
+  const double kappa = l.info.geometry.kappa(g), hmin = LevelSetGeometry::hMin(g);
   double loc[3] = {0, 0, 0}, glob[3];
   localVolumeAndDerivative(g, psi, kappa, loc[0], loc[1]);
   if (std::any_of(open_, open_ + 6, [](bool b) { return b; }) && st.fields.allocated(field::velocity))
     loc[2] = localOpenBoundaryFlux(g, psi, st.fields.vector(field::velocity), kappa, open_);
   MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
-  target_ -= st.dt * glob[2];
+  l.target -= st.dt * glob[2];
   double s = 0;
-  if (glob[1] > 0) s = std::clamp((target_ - glob[0]) / glob[1], -0.1 * hmin, 0.1 * hmin);
+  if (glob[1] > 0) s = std::clamp((l.target - glob[0]) / glob[1], -0.1 * hmin, 0.1 * hmin);
   if (s != 0) shiftField(g, psi, s);
-  shiftTotal_ += std::abs(s);
+  l.shiftTotal += std::abs(s);
   // Volume the correction put back or took away so far (|s| times the smoothed
   // interface area), relative: what the numerics moved, for energy budgets.
-  movedTotal_ += std::abs(s) * glob[1];
-  st.diag["volume_shift_cells"] = s / hmin;
-  st.diag["volume_corrected"] = volume0_ != 0 ? movedTotal_ / volume0_ : 0.0;
+  l.movedTotal += std::abs(s) * glob[1];
+  st.diag["volume_shift_cells" + l.suffix()] = s / hmin;
+  st.diag["volume_corrected" + l.suffix()] = l.volume0 != 0 ? l.movedTotal / l.volume0 : 0.0;
 }
 
 } // namespace voigt

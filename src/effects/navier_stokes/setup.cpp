@@ -28,7 +28,7 @@ void NavierStokes::configure(const Scene& s, const Published& pub) {
   // Conservative momentum advection where the density varies: two phases of
   // different density (velocity form at ratio 1000 creates energy). The phase is
   // level_set's (validated there; "" without it).
-  const bool varying = !pub.phase.empty() && s.materials.at(pub.phase).density != s.fluidMaterial().density;
+  const bool varying = pub.varyingDensity(s);
   conservative_ = s.advection.momentum == "conservative" || (s.advection.momentum == "auto" && varying);
   // Scene section navier_stokes: viscous (explicit, the default | semi_implicit: the viscous
   // limit on dt goes, kernels/viscous_implicit.hpp).
