@@ -15,6 +15,7 @@
 #include "core/field_names.hpp"
 #include "kernels/advection_faces.hpp"
 #include "kernels/levelset.hpp"
+#include "kernels/multiphase.hpp"
 #include "kernels/reductions.hpp"
 
 namespace voigt {
@@ -62,8 +63,15 @@ void LevelSet::diagnose(State& st) {
   VOIGT_UNROLL
   for (int d = 0; d < 3; ++d) total *= g.hi[d] - g.lo[d];
   double fluid = total;
-  for (auto& l : ls_) {
-    PhaseMeasures m = localPhaseMeasures(g, st.fields.scalar(l.info.field), l.info.geometry.kappa(g));
+  for (size_t i = 0; i < ls_.size(); ++i) {
+    LevelSetInstance& l = ls_[i];
+    const Field psi = st.fields.scalar(l.info.field);
+    const double kappa = l.info.geometry.kappa(g);
+    PhaseMeasures m = localPhaseMeasures(g, psi, kappa);
+    if (covered(i)) { // the fluid's volume: what later level sets leave (multiphase.cpp)
+      double dv;
+      multiphase::localCoveredVolume(g, psi, kappa, cover(st, i), m.volume, dv);
+    }
     double loc[3] = {m.volume, m.sharpVolume, m.area}, glob[3];
     MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
     l.volume = glob[0];

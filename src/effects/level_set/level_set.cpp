@@ -14,10 +14,12 @@ namespace voigt {
 std::unique_ptr<Effect> makeLevelSet() { return std::make_unique<LevelSet>(); }
 
 namespace {
+bool given(const Scene& s, const char* key) { return s.root[key].IsDefined() && !s.root[key].IsNull(); }
+
 // The maps that define level sets: `level_set:` (one, unnamed) or the `level_sets:` list.
 std::vector<Section> levelSetSections(const Scene& s) {
   const Section top(s.root, "", s.source);
-  const bool one = s.root["level_set"].IsDefined(), many = s.root["level_sets"].IsDefined();
+  const bool one = given(s, "level_set"), many = given(s, "level_sets");
   if (one && many) top.fail("level_sets", "and 'level_set' both given: use one (level_set: one unnamed level set)");
   if (!many) return {topSection(s, "level_set")};
   std::vector<Section> out = top.list("level_sets");
@@ -51,13 +53,22 @@ LevelSetInfo readInfo(const Scene& s, const Section& ls, bool named) {
 // The phases and band geometries, which navier_stokes, elasticity, reinit, surface_tension
 // and solid_body read from Published.
 void LevelSet::publish(const Scene& s, Published& pub) const {
-  const bool named = s.root["level_sets"].IsDefined();
+  const bool named = given(s, "level_sets");
   const std::vector<Section> secs = levelSetSections(s);
   for (const Section& ls : secs) {
     LevelSetInfo info = readInfo(s, ls, named);
     for (const LevelSetInfo& o : pub.levelSets)
       if (o.name == info.name) ls.fail("name", "'" + info.name + "' is used twice in 'level_sets'");
     pub.levelSets.push_back(info);
+  }
+  // Fluids before solids: the blend lays later level sets over earlier ones, and a fluid's psi
+  // under a body is its extension (kernels/multiphase.hpp), which must not cover the body.
+  bool solidSeen = false;
+  for (size_t i = 0; i < secs.size(); ++i) {
+    const bool solid = s.materials.at(pub.levelSets[i].phase).shearModulus > 0;
+    if (!solid && solidSeen)
+      secs[i].fail("phase", "is a fluid listed after a solid: list the fluids' level sets first (later ones are laid over earlier ones)");
+    solidSeen |= solid;
   }
 }
 
@@ -73,6 +84,7 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     l.info = pub.levelSets[i];
     for (const char* k : {"smoothing", "band", "phase", "name"}) ls.has(k); // validated in publish()
     l.rho = s.materials.at(l.info.phase).density;
+    l.solid = s.materials.at(l.info.phase).shearModulus > 0;
     l.mu = s.materials.at(l.info.phase).viscosity;
     l.shape = compileShape(ls, "shape", s);
     // Default: march unless the shape is already an exact distance.
@@ -85,6 +97,8 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     ls.finish();
     ls_.push_back(std::move(l));
   }
+  hides_ = false;
+  for (size_t i = 0; i + 1 < ls_.size(); ++i) hides_ |= !ls_[i].solid && ls_.back().solid;
   for (int f = 0; f < 6; ++f) open_[f] = s.bc[f].type == BcType::Inflow || s.bc[f].type == BcType::Outflow;
   limiter_ = limiterNamed(s.advection.limiter);
 }
@@ -92,6 +106,9 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
 void LevelSet::declareFields(FieldStore& f) const {
   for (const auto& l : ls_) f.declare(l.info.field, Centring::Cell, 1, name());
   f.declareDerived("psi_old", Centring::Cell, 1, name()); // the RK stage copy, shared
+  if (!single()) f.declareDerived("level_set_cover", Centring::Cell, 1, name());
+  if (hides_)
+    for (const char* n : {"level_set_known", "level_set_known_tmp"}) f.declareDerived(n, Centring::Cell, 1, name());
 }
 
 void LevelSet::refreshGhosts(State& st, const Field& f) const {
@@ -106,6 +123,7 @@ void LevelSet::setup(State& st) {
     if (l.fastMarching) l.fm = fastMarching(st.grid, psi);
     refreshGhosts(st, psi);
   }
+  hideUnderSolids(st);
   blend(st);
   diagnose(st);
   for (auto& l : ls_) {
@@ -163,6 +181,9 @@ void LevelSet::loadState(const nlohmann::json& j) {
 void LevelSet::registerTasks(Pipeline& p) {
   p.add(Stage::Properties, name(), "density and viscosity from H(psi), Eq. (2)-(4)", [this](State& st) { blend(st); });
   p.add(Stage::Advection, name(), "psi: SSP-RK2 + MUSCL/KT, Eq. (1)", [this](State& st) { advect(st); });
+  if (hides_)
+    p.add(Stage::Corrections, name(), "fluids' psi extended under solid bodies (kernels/multiphase.hpp)",
+          [this](State& st) { hideUnderSolids(st); }, {"reinit"});
   if (std::any_of(ls_.begin(), ls_.end(), [](const LevelSetInstance& l) { return l.globalCorrection; }))
     p.add(Stage::Corrections, name(), "global volume correction: psi += s so that INT H(psi) = V0 - outflow",
           [this](State& st) { correctVolume(st); }, {"reinit"});

@@ -24,6 +24,7 @@ struct LevelSetInstance {
   double rho = 1, mu = 0;
   bool harmonicMu = false;       // viscosity_blend: harmonic
   bool fastMarching = true;
+  bool solid = false;            // its phase has a shear modulus: fluids' level sets are extended under it
   bool globalCorrection = true;  // volume_correction: global (default) or none
   ShapeProgram shape;
   FastMarchingStats fm;
@@ -63,7 +64,13 @@ class LevelSet : public Effect {
  private:
   void refreshGhosts(State& st, const Field& f) const;
   bool single() const { return ls_.size() == 1 && ls_[0].info.name.empty(); }
-  void correctVolume(State& st, LevelSetInstance& l);
+  void correctVolume(State& st, size_t i);
+  // Several level sets: each fluid's psi extended under every solid body (kernels/multiphase.hpp),
+  // and the part of a fluid's volume the later level sets leave uncovered.
+  void hideUnderSolids(State& st);
+  bool covered(size_t i) const { return !single() && !ls_[i].solid && i + 1 < ls_.size(); }
+  Field cover(State& st, size_t i) const; // PROD_{j>i} (1 - H_j) in "level_set_cover"
+  bool hides_ = false; // some fluid level set lies under a solid one
 
   const Scene* scene_ = nullptr;
   std::vector<LevelSetInstance> ls_;

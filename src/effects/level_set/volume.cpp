@@ -22,20 +22,27 @@
 #include "effects/level_set/level_set.hpp"
 #include "core/field_names.hpp"
 #include "kernels/levelset.hpp"
+#include "kernels/multiphase.hpp"
 
 namespace voigt {
 
 void LevelSet::correctVolume(State& st) {
-  for (auto& l : ls_)
-    if (l.globalCorrection) correctVolume(st, l);
+  for (size_t i = 0; i < ls_.size(); ++i)
+    if (ls_[i].globalCorrection) correctVolume(st, i);
 }
 
-void LevelSet::correctVolume(State& st, LevelSetInstance& l) {
+// Several level sets: a fluid's target is its covered volume (multiphase.cpp), and so is
+// its derivative: the shift moves only the part of the interface that is seen.
+void LevelSet::correctVolume(State& st, size_t i) {
+  LevelSetInstance& l = ls_[i];
   const Grid& g = st.grid;
   Field psi = st.fields.scalar(l.info.field);
   const double kappa = l.info.geometry.kappa(g), hmin = LevelSetGeometry::hMin(g);
   double loc[3] = {0, 0, 0}, glob[3];
-  localVolumeAndDerivative(g, psi, kappa, loc[0], loc[1]);
+  if (covered(i))
+    multiphase::localCoveredVolume(g, psi, kappa, cover(st, i), loc[0], loc[1]);
+  else
+    localVolumeAndDerivative(g, psi, kappa, loc[0], loc[1]);
   if (std::any_of(open_, open_ + 6, [](bool b) { return b; }) && st.fields.allocated(field::velocity))
     loc[2] = localOpenBoundaryFlux(g, psi, st.fields.vector(field::velocity), kappa, open_);
   MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
