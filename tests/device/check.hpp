@@ -78,6 +78,8 @@ void effects(const Grid& g, Fields& f);
 void capillary(const Grid& g, Fields& f);
 // kernels_viscous.cpp (semi-implicit viscosity), after capillary().
 void viscous(const Grid& g, Fields& f);
+// kernels_multiphase.cpp (several level sets), after viscous().
+void multiphase(const Grid& g, Fields& f);
 
 } // namespace check
 } // namespace voigt

@@ -381,7 +381,7 @@ int main(int argc, char** argv) {
       elasticity(g, f);
       fastDiagonalization(g, f);
       reinitialisation(g, f);
-      check::effects(g, f), check::capillary(g, f), check::viscous(g, f); // kernels_{effects,capillary,viscous}.cpp
+      check::effects(g, f), check::capillary(g, f), check::viscous(g, f), check::multiphase(g, f); // kernels_*.cpp
       boundaries(g, f);
     }
     freeGrid(g);
