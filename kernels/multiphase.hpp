@@ -8,6 +8,7 @@
 #include "core/field.hpp"
 #include "core/index_space.hpp"
 #include "kernels/heaviside.hpp"
+#include "kernels/lists.hpp"
 
 namespace voigt::multiphase {
 
@@ -35,6 +36,32 @@ inline void localCoveredVolume(const Grid& g, const Field& psi, double kappa, co
       v, d);
   vol = v * dv;
   dvol = d * dv;
+}
+
+// The box of the cells of r with psi > threshold (empty, b >= e, if none): the extension's
+// sweeps run on it, so a body costs its own neighbourhood, not the grid.
+inline Range3 boxWhere(const Field& psi, double threshold, Range3 r) {
+  ListBoxAcc acc; // kernels/lists.hpp
+  reduce_rows(
+      "multiphase_box", r,
+      KOKKOS_LAMBDA(int i, int j, int k, ListBoxAcc& a) {
+        if (!(psi(i, j, k) > threshold)) return;
+        const int x[3] = {i, j, k};
+        for (int d = 0; d < 3; ++d) {
+          if (x[d] < a.lo[d]) a.lo[d] = x[d];
+          if (x[d] > a.hi[d]) a.hi[d] = x[d];
+        }
+      },
+      AccReducer<ListBoxAcc>(acc));
+  Range3 b{{0, 0, 0}, {0, 0, 0}};
+  if (acc.lo[0] > acc.hi[0]) return b;
+  for (int d = 0; d < 3; ++d) b.b[d] = acc.lo[d], b.e[d] = acc.hi[d] + 1;
+  return b;
+}
+
+// dst = src on r.
+inline void copyOn(const Field& dst, const Field& src, Range3 r) {
+  for_each3("multiphase_copy", r, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = src(i, j, k); });
 }
 
 // The cells to fill under a body: -outside < psiBody <= inside. known = 1 where the
@@ -67,6 +94,21 @@ inline void extendSweep(const Field& body, double outside, double inside, const 
           outF(i, j, k) = sv / sw;
           outK(i, j, k) = 1;
         }
+      });
+}
+
+// A body's initial velocity (level_sets[i].velocity): u <- u + H (v - u) at the nodes, H of the
+// mean of the 8 cells around each node (the blend's weight there); the first projection
+// makes the whole field divergence-free.
+inline void setBodyVelocity(const Field& psi, double kappa, double vx, double vy, double vz, const VecField& u,
+                            Range3 nodes) {
+  for_each3("multiphase_body_velocity", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+        double p = 0;
+        for (int c = 0; c < 8; ++c) p += psi(i - 1 + (c & 1), j - 1 + ((c >> 1) & 1), k - 1 + (c >> 2));
+        const double H = smoothedHeaviside(0.125 * p, kappa);
+        u.c[0](i, j, k) += H * (vx - u.c[0](i, j, k));
+        u.c[1](i, j, k) += H * (vy - u.c[1](i, j, k));
+        u.c[2](i, j, k) += H * (vz - u.c[2](i, j, k));
       });
 }
 

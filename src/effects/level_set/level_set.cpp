@@ -7,6 +7,7 @@
 
 #include "core/boundary.hpp"
 #include "core/field_names.hpp"
+#include "kernels/multiphase.hpp"
 #include "scene/reader.hpp"
 
 namespace voigt {
@@ -92,6 +93,12 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     l.globalCorrection = ls.choice("volume_correction", "global", {"global", "none"}) == "global";
     // viscosity_blend: linear (the paper's Eq. 2) or harmonic, 1 / mu = H / mu1 + (1 - H) / mu2, the
     // series resistance of the two fluids to a shear across the zone (cases/rising_bubble/README.md).
+    // velocity: a body's initial velocity, laid over the scene's initial field (multiphase.hpp).
+    l.moving = ls.has("velocity");
+    if (l.moving && std::find(s.effects.begin(), s.effects.end(), "navier_stokes") == s.effects.end())
+      ls.fail("velocity", "needs navier_stokes (the initial velocity of a body in the flow)");
+    const auto v = ls.vec3("velocity", {0, 0, 0});
+    for (int d = 0; d < 3; ++d) l.velocity[d] = v[d];
     l.harmonicMu = ls.choice("viscosity_blend", "linear", {"linear", "harmonic"}) == "harmonic";
     if (l.harmonicMu && !(l.mu > 0 && muF_ > 0)) ls.fail("viscosity_blend", "harmonic needs both phases' viscosity > 0");
     ls.finish();
@@ -124,6 +131,13 @@ void LevelSet::setup(State& st) {
     refreshGhosts(st, psi);
   }
   hideUnderSolids(st);
+  for (auto& l : ls_)
+    if (l.moving) {
+      multiphase::setBodyVelocity(st.fields.scalar(l.info.field), l.info.geometry.kappa(st.grid), l.velocity[0],
+                                  l.velocity[1], l.velocity[2], st.fields.vector(field::velocity), nodeRange(st.grid));
+      st.velocityHalosCurrent = false; // written here
+      exchangeVelocity(st);
+    }
   blend(st);
   diagnose(st);
   for (auto& l : ls_) {

@@ -24,7 +24,9 @@ struct LevelSetInstance {
   double rho = 1, mu = 0;
   bool harmonicMu = false;       // viscosity_blend: harmonic
   bool fastMarching = true;
-  bool solid = false;            // its phase has a shear modulus: fluids' level sets are extended under it
+  bool solid = false;
+  bool moving = false;           // level_sets[i].velocity given: the body's initial velocity
+  double velocity[3] = {0, 0, 0};            // its phase has a shear modulus: fluids' level sets are extended under it
   bool globalCorrection = true;  // volume_correction: global (default) or none
   ShapeProgram shape;
   FastMarchingStats fm;

@@ -3,7 +3,7 @@
 //   cells -(kappa_b + h) < psi_b <= kappa_b + 2 h take psi_f extended along grad psi_b from
 //   the cells farther out, in Jacobi sweeps (one cell deeper each). The body's smoothing
 //   zone and a cell beyond then see the fluid that surrounds the body; deeper inside psi_f
-//   is covered (H_b = 1) and left as it is.
+//   is covered (H_b = 1) and left as it is. The sweeps run on the box of the cells to fill.
 //   Covered volume: V_f = INT H(psi_f) PROD_{j>f} (1 - H(psi_j)) dV, what the blend gives the fluid.
 #include <cmath>
 
@@ -38,10 +38,11 @@ void LevelSet::hideUnderSolids(State& st) {
       if (fl.solid) continue;
       Field pf = st.fields.scalar(fl.info.field);
       multiphase::markSources(pb, outside, known, cellRange(g, g.ng));
-      for (int s = 0; s < sweeps; ++s) {
-        multiphase::extendSweep(pb, outside, inside, pf, known, tmp, knownTmp, cells);
-        Kokkos::deep_copy(pf, tmp);
-        Kokkos::deep_copy(known, knownTmp);
+      const Range3 box = multiphase::boxWhere(pb, -outside, cells); // this rank's cells to fill
+      for (int s = 0; s < sweeps; ++s) { // every rank: the exchanges are collective
+        multiphase::extendSweep(pb, outside, inside, pf, known, tmp, knownTmp, box);
+        multiphase::copyOn(pf, tmp, box);
+        multiphase::copyOn(known, knownTmp, box);
         st.halo->exchange(std::vector<Field>{pf, known});
         fillCellGhostsEven(g, pf);
         fillCellGhostsEven(g, known);
