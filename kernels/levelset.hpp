@@ -123,13 +123,14 @@ struct PhaseMeasures {
 };
 
 // Local (this rank's owned cells) sums; the caller reduces over ranks.
-// Needs psi on one ghost layer for the central gradient.
-inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double kappa) {
+// Needs psi on one ghost layer for the central gradient. box: only there (core/index_space.hpp,
+// within: several level sets; psi <= -kappa outside it adds nothing).
+inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double kappa, const Range3* box = nullptr) {
   const double dv = g.cellVolume();
   const double i0 = 0.5 / g.h[0], i1 = 0.5 / g.h[1], i2 = 0.5 / g.h[2];
   double vol = 0, sharp = 0, area = 0;
   Kokkos::parallel_reduce(
-      "phase_measures", cellRange(g).policy(),
+      "phase_measures", within(box, 0, cellRange(g)).policy(),
       KOKKOS_LAMBDA(int i, int j, int k, double& v, double& s, double& a) {
         const double p = psi(i, j, k);
         v += smoothedHeaviside(p, kappa) * dv;
@@ -149,11 +150,12 @@ inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double 
 // Global volume correction (level_set.volume_correction, effects/level_set/volume.cpp).
 // Local sums over owned cells of H(psi) dv and dH/dpsi(psi) dv: the phase-1
 // volume and its derivative with respect to a uniform shift of psi (Newton's step).
-inline void localVolumeAndDerivative(const Grid& g, const Field& psi, double kappa, double& vol, double& dvol) {
+inline void localVolumeAndDerivative(const Grid& g, const Field& psi, double kappa, double& vol, double& dvol,
+                                     const Range3* box = nullptr) {
   const double dv = g.cellVolume();
   double v = 0, d = 0;
   Kokkos::parallel_reduce(
-      "volume_and_derivative", cellRange(g).policy(),
+      "volume_and_derivative", within(box, 0, cellRange(g)).policy(),
       KOKKOS_LAMBDA(int i, int j, int k, double& va, double& da) {
         const double p = psi(i, j, k);
         va += smoothedHeaviside(p, kappa);
@@ -166,9 +168,15 @@ inline void localVolumeAndDerivative(const Grid& g, const Field& psi, double kap
 
 // psi += s on every cell, ghosts included: s is the same on every rank and a
 // uniform shift commutes with the even (mirror) ghost fill, so no exchange.
-inline void shiftField(const Grid& g, const Field& psi, double s) {
-  for_each3("shift_psi", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}},
+// box: only there and its ghost layers (several level sets: the far field is left as it is).
+inline void shiftField(const Grid& g, const Field& psi, double s, const Range3* box = nullptr) {
+  for_each3("shift_psi", within(box, g.ng, Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}}),
       KOKKOS_LAMBDA(int i, int j, int k) { psi(i, j, k) += s; });
+}
+
+// dst = src on r.
+inline void copyCells(const Field& dst, const Field& src, Range3 r) {
+  for_each3("copy_cells", r, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = src(i, j, k); });
 }
 
 // Outward flux of the phase-1 volume through the open faces of the domain

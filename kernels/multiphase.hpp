@@ -8,6 +8,7 @@
 #include "core/field.hpp"
 #include "core/index_space.hpp"
 #include "kernels/heaviside.hpp"
+#include "kernels/levelset.hpp"
 #include "kernels/lists.hpp"
 
 namespace voigt::multiphase {
@@ -23,11 +24,11 @@ inline void cover(const Field& psi, double kappa, const Field& c, bool first, Ra
 // Owned cells: INT H(psi) cover dv and INT H'(psi) cover dv (the covered volume and its
 // derivative under a uniform shift of psi: the volume correction's Newton step).
 inline void localCoveredVolume(const Grid& g, const Field& psi, double kappa, const Field& c, double& vol,
-                               double& dvol) {
+                               double& dvol, const Range3* box = nullptr) {
   const double dv = g.cellVolume();
   double v = 0, d = 0;
   Kokkos::parallel_reduce(
-      "multiphase_covered_volume", cellRange(g).policy(),
+      "multiphase_covered_volume", within(box, 0, cellRange(g)).policy(),
       KOKKOS_LAMBDA(int i, int j, int k, double& va, double& da) {
         const double p = psi(i, j, k), w = c(i, j, k);
         va += smoothedHeaviside(p, kappa) * w;
@@ -57,11 +58,6 @@ inline Range3 boxWhere(const Field& psi, double threshold, Range3 r) {
   if (acc.lo[0] > acc.hi[0]) return b;
   for (int d = 0; d < 3; ++d) b.b[d] = acc.lo[d], b.e[d] = acc.hi[d] + 1;
   return b;
-}
-
-// dst = src on r.
-inline void copyOn(const Field& dst, const Field& src, Range3 r) {
-  for_each3("multiphase_copy", r, KOKKOS_LAMBDA(int i, int j, int k) { dst(i, j, k) = src(i, j, k); });
 }
 
 // The cells to fill under a body: -outside < psiBody <= inside. known = 1 where the

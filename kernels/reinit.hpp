@@ -145,9 +145,10 @@ KOKKOS_INLINE_FUNCTION bool settledCell(const Field& psi0, int i, int j, int k, 
 // cells from the interface kept |psi| = 15 h, outside the band, never re-initialised, with the
 // curvature and the zone's neighbours read from it. No sign changes and no zone cell moves, so
 // H(psi) and every phase volume are unchanged. One Jacobi pass a call; psi fresh one layer deep.
-inline void boundFarField(const Grid& g, const Field& psi, const Field& out, double kappa) {
+// box (here and below): only there (several level sets: core/index_space.hpp, within).
+inline void boundFarField(const Grid& g, const Field& psi, const Field& out, double kappa, const Range3* box = nullptr) {
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
-  for_each3("reinit_bound_far", cellRange(g), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("reinit_bound_far", within(box, 0, cellRange(g)), KOKKOS_LAMBDA(int i, int j, int k) {
     const double p = psi(i, j, k), a = km::fabs(p);
     double m = a;
     if (a >= kappa) {
@@ -165,9 +166,9 @@ inline void boundFarField(const Grid& g, const Field& psi, const Field& out, dou
 // Compact list of owned cells with |psi0| < band that are not settled (tol > 0); returns
 // the count. psi0 must be fresh one ghost layer deep.
 inline int buildBandList(const Grid& g, const Field& psi0, double band, const IntList& cell, double kappa = 0,
-                         double tol = 0, bool curved = false) {
+                         double tol = 0, bool curved = false, const Range3* box = nullptr) {
   const double ih0 = 0.5 / g.h[0], ih1 = 0.5 / g.h[1], ih2 = 0.5 / g.h[2];
-  return listCellsWhere("reinit_band_list", g, cellRange(g), cell, KOKKOS_LAMBDA(int i, int j, int k) {
+  return listCellsWhere("reinit_band_list", g, within(box, 0, cellRange(g)), cell, KOKKOS_LAMBDA(int i, int j, int k) {
     return km::fabs(psi0(i, j, k)) < band && !(tol > 0 && settledCell(psi0, i, j, k, ih0, ih1, ih2, kappa, tol, curved));
   });
 }
@@ -175,16 +176,16 @@ inline int buildBandList(const Grid& g, const Field& psi0, double band, const In
 // H' = 0 on the settled cells of the owned cells and one ghost layer (what the
 // constraint's 27-point sums read): they take no correction and add none.
 inline void unsettleDelta(const Grid& g, const Field& psi0, const Field& dH, double kappa, double tol,
-                          bool curved = false) {
+                          bool curved = false, const Range3* box = nullptr) {
   const double ih0 = 0.5 / g.h[0], ih1 = 0.5 / g.h[1], ih2 = 0.5 / g.h[2];
-  for_each3("reinit_settled", cellRange(g, 1), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("reinit_settled", within(box, 1, cellRange(g, 1)), KOKKOS_LAMBDA(int i, int j, int k) {
     if (settledCell(psi0, i, j, k, ih0, ih1, ih2, kappa, tol, curved)) dH(i, j, k) = 0.0;
   });
 }
 
 // H'(psi0) of Eq. (4) over the whole array (ghosts included; psi0 must be fresh).
-inline void deltaField(const Grid& g, const Field& psi0, const Field& dH, double kappa) {
-  for_each3("reinit_delta", Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}},
+inline void deltaField(const Grid& g, const Field& psi0, const Field& dH, double kappa, const Range3* box = nullptr) {
+  for_each3("reinit_delta", within(box, g.ng, Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}}),
       KOKKOS_LAMBDA(int i, int j, int k) { dH(i, j, k) = smoothedDelta(psi0(i, j, k), kappa); });
 }
 
@@ -192,9 +193,9 @@ inline void deltaField(const Grid& g, const Field& psi0, const Field& dH, double
 // cells and one ghost layer: the constraint's 27-point sums read it, instead of
 // computing it again at every neighbour (27 times per cell). psi0 needs 2 fresh
 // ghost layers.
-inline void gradMagField(const Grid& g, const Field& psi0, const Field& dH, const Field& gm) {
+inline void gradMagField(const Grid& g, const Field& psi0, const Field& dH, const Field& gm, const Range3* box = nullptr) {
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
-  for_each3("reinit_grad_mag", cellRange(g, 1), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each3("reinit_grad_mag", within(box, 1, cellRange(g, 1)), KOKKOS_LAMBDA(int i, int j, int k) {
     const double gx = (psi0(i + 1, j, k) - psi0(i - 1, j, k)) / (2 * h0);
     const double gy = (psi0(i, j + 1, k) - psi0(i, j - 1, k)) / (2 * h1);
     const double gz = (psi0(i, j, k + 1) - psi0(i, j, k - 1)) / (2 * h2);
@@ -249,8 +250,8 @@ inline void listConstrained(BandViews& b, int n, const Field& dH) {
 // Per band cell, fixed for the call: flags, S(psi0), D, and the constraint's coef.
 // psi0 and dH need 2 fresh ghost layers; gm: scratch for gradMagField.
 inline void prepareBand(const Grid& g, BandViews& b, int n, const Field& psi0, const Field& dH,
-                        const Field& gm, double band, bool constraint) {
-  if (constraint) gradMagField(g, psi0, dH, gm);
+                        const Field& gm, double band, bool constraint, const Range3* box = nullptr) {
+  if (constraint) gradMagField(g, psi0, dH, gm, box);
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   const double hs = std::min({h0, h1, h2});
   const int sj = g.ext[0], sk = g.ext[0] * g.ext[1];

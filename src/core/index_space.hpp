@@ -112,6 +112,28 @@ inline Range3 grown(Range3 r, int n) {
   return r;
 }
 
+// The cells in both a and b; empty (e = b) if they do not meet.
+inline Range3 intersect(Range3 a, const Range3& b) {
+  bool empty = false;
+  for (int d = 0; d < 3; ++d) {
+    a.b[d] = a.b[d] > b.b[d] ? a.b[d] : b.b[d];
+    a.e[d] = a.e[d] < b.e[d] ? a.e[d] : b.e[d];
+    empty = empty || a.e[d] <= a.b[d];
+  }
+  if (empty)
+    for (int d = 0; d < 3; ++d) a.e[d] = a.b[d];
+  return a;
+}
+
+// A kernel's range: `full`, or with a box given (several level sets: where a level set can be
+// active, effects/level_set/level_set.hpp) the box grown by `grow` layers and clipped to full.
+inline Range3 within(const Range3* box, int grow, const Range3& full) {
+  if (!box) return full;
+  for (int d = 0; d < 3; ++d)
+    if (box->e[d] <= box->b[d]) return intersect(*box, *box); // empty stays empty
+  return intersect(grown(*box, grow), full);
+}
+
 // Owned cells grown by `grow` layers into the ghosts.
 inline Range3 cellRange(const Grid& g, int grow = 0) {
   Range3 r;

@@ -8,6 +8,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/halo.hpp"
+#include "core/index_space.hpp"
 #include "scene/scene.hpp"
 
 namespace voigt {
@@ -41,6 +42,15 @@ struct State {
   // running counters, for summary.json and the time-series CSV.
   std::map<std::string, double> diag;
   std::map<std::string, double> counters;
+
+  // Where a cell field can be active, by field name (local owned-cell indices): outside the box
+  // the field holds values its kernels may skip (several level sets: psi_NAME <= -reach there,
+  // effects/level_set/level_set.hpp). A field without an entry is active everywhere.
+  std::map<std::string, Range3> activeBoxes;
+  const Range3* activeBox(const std::string& field) const {
+    auto it = activeBoxes.find(field);
+    return it == activeBoxes.end() ? nullptr : &it->second;
+  }
 
   // Set by a task that asks the run to stop after this step (the same on every
   // rank): Simulation::advance stops the run as a failure with this message.

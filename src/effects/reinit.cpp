@@ -50,13 +50,11 @@ class Reinit : public Effect {
     for (const LevelSetInfo& l : ls_) f.declare(l.field, Centring::Cell, 1, name());
   }
   void setup(State& st) override {
-    re_.clear();
-    for (const LevelSetInfo& l : ls_) {
-      ReinitParams p = p_;
-      p.kappa = l.geometry.kappa(st.grid);
-      p.band = l.geometry.band(st.grid);
-      re_.push_back(std::make_unique<Reinitializer>(st.grid, p));
-    }
+    // One Reinitializer (its scratch) for every level set: each call sets its band; with
+    // several level sets each runs on its box (State::activeBoxes).
+    p_.kappa = ls_[0].geometry.kappa(st.grid);
+    p_.band = ls_[0].geometry.band(st.grid);
+    re_ = std::make_unique<Reinitializer>(st.grid, p_);
     // Time-series columns are fixed at the first row: declare ours now.
     st.diag["reinit_band_cells"] = 0.0;
     st.diag["reinit_grad_error"] = 0.0;
@@ -68,7 +66,8 @@ class Reinit : public Effect {
       if ((st.step + 1) % interval_ != 0) return;
       ReinitStats s;
       for (size_t i = 0; i < ls_.size(); ++i) { // band cells summed, gradient error the largest
-        const ReinitStats si = re_[i]->run(*st.halo, st.fields.scalar(ls_[i].field));
+        re_->setBand(ls_[i].geometry.kappa(st.grid), ls_[i].geometry.band(st.grid));
+        const ReinitStats si = re_->run(*st.halo, st.fields.scalar(ls_[i].field), st.activeBox(ls_[i].field));
         if (i == 0) s = si;
         if (i == 0) continue;
         s.bandCells += si.bandCells;
@@ -108,7 +107,7 @@ class Reinit : public Effect {
   long interval_ = 1;
   long long calls_ = 0;
   double bandTotal_ = 0;
-  std::vector<std::unique_ptr<Reinitializer>> re_;
+  std::unique_ptr<Reinitializer> re_;
 };
 } // namespace
 

@@ -238,7 +238,10 @@ void SolidBody::measure(State& st, double time) {
       const Field pa = st.fields.scalar(bodies_[a].info.field), pc = st.fields.scalar(bodies_[c].info.field);
       // Within both bands psi is a distance; farther apart than that: the domain's diagonal.
       const double reach = std::min(bodies_[a].info.geometry.band(g), bodies_[c].info.geometry.band(g));
-      double gap = localBodyGap(pa, pc, reach, cellRange(g));
+      // Several level sets: only where both boxes meet can both be within their bands.
+      const Range3 both = within(st.activeBox(bodies_[a].info.field), 0,
+                                 within(st.activeBox(bodies_[c].info.field), 0, cellRange(g)));
+      double gap = localBodyGap(pa, pc, reach, both);
       MPI_Allreduce(MPI_IN_PLACE, &gap, 1, MPI_DOUBLE, MPI_MIN, g.comm);
       pairs_[q].update(std::min(gap, std::sqrt(diag2)), time, contactCells_ * hmin_);
       st.diag["solid_gap_" + pairs_[q].name] = pairs_[q].gap;

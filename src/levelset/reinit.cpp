@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/boundary.hpp"
+#include "kernels/levelset.hpp"
 #include "kernels/reductions.hpp"
 
 namespace voigt {
@@ -39,7 +40,14 @@ void Reinitializer::refresh(Halo& halo, const Field& f, const Range3* reads, int
   else fillCellGhostsEven(*g_, f);
 }
 
-ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
+void Reinitializer::setBand(double kappa, double band) {
+  if (!(band > 0) || (p_.volumeConstraint && !(kappa > 0 && kappa <= band)))
+    throw std::invalid_argument("reinit: the volume constraint needs 0 < kappa <= band");
+  p_.kappa = kappa;
+  p_.band = band;
+}
+
+ReinitStats Reinitializer::run(Halo& halo, const Field& psi, const Range3* box) {
   using namespace reinit;
   const Grid& g = *g_;
   Kokkos::fence();
@@ -50,23 +58,29 @@ ReinitStats Reinitializer::run(Halo& halo, const Field& psi) {
 
   // psi0 = psi. The stage fields start as copies, so the stencils read the frozen
   // values wherever the band kernels do not write.
+  // With a box the copies cover it and its ghost layers: all that the stencils read.
+  const Range3 all{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}}, copied = within(box, g.ng, all);
+  auto copy = [&](const Field& dst, const Field& src) {
+    if (box) copyCells(dst, src, copied);
+    else Kokkos::deep_copy(dst, src);
+  };
   refresh(halo, psi);
   if (p_.boundFarField) { // kernels/reinit.hpp: no cell near the interface stays outside the band
-    Kokkos::deep_copy(psi1_, psi);
-    boundFarField(g, psi, psi1_, p_.kappa);
-    Kokkos::deep_copy(psi, psi1_);
+    copy(psi1_, psi);
+    boundFarField(g, psi, psi1_, p_.kappa, box);
+    copy(psi, psi1_);
     refresh(halo, psi);
   }
   const double zt = p_.zoneTolerance;
-  const int n = buildBandList(g, psi, p_.band, band_.cell, p_.kappa, zt, p_.zoneCurvature);
+  const int n = buildBandList(g, psi, p_.band, band_.cell, p_.kappa, zt, p_.zoneCurvature, box);
   band_.nRuns = listRuns(band_.cell, n, band_.runs);
-  Kokkos::deep_copy(psi1_, psi);
+  copy(psi1_, psi);
   if (con) {
-    Kokkos::deep_copy(psiT_, psi);
-    deltaField(g, psi, dH_, p_.kappa);
-    if (zt > 0) unsettleDelta(g, psi, dH_, p_.kappa, zt, p_.zoneCurvature);
+    copy(psiT_, psi);
+    deltaField(g, psi, dH_, p_.kappa, box);
+    if (zt > 0) unsettleDelta(g, psi, dH_, p_.kappa, zt, p_.zoneCurvature, box);
   }
-  prepareBand(g, band_, n, psi, dH_, gm_, p_.band, con);
+  prepareBand(g, band_, n, psi, dH_, gm_, p_.band, con, box);
 
   // Inside the loop the kernels read the band cells and 2 layers around them:
   // the wall ghosts are filled there only; the last refresh of psi is whole.

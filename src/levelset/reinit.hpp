@@ -45,7 +45,11 @@ class Reinitializer {
   // Allocates the scratch once: 3 cell fields and 5 band arrays sized for all owned cells.
   Reinitializer(const Grid& g, ReinitParams p);
   // Re-initialises the owned band cells of psi in place (needs nothing fresh on entry).
-  ReinitStats run(Halo& halo, const Field& psi);
+  // box: the owned cells where psi can lie in the band (several level sets, one Reinitializer
+  // for all: the passes and copies run there only; the scratch outside it is not read).
+  ReinitStats run(Halo& halo, const Field& psi, const Range3* box = nullptr);
+  // Another level set's smoothing half-width and band (lengths), for the next run().
+  void setBand(double kappa, double band);
   const ReinitParams& params() const { return p_; }
 
  private:

@@ -52,7 +52,11 @@ TEST(LevelSets, BallDroppedIntoPoolReachesTheFloorKeepingBothVolumes) {
 
 // The pool's box above the domain: water everywhere but the ball. The blend lays the ball over
 // water exactly as the one-level-set scene blends it, the pool's psi stays positive (no shift of
-// the volume correction, the extension under the ball copies positive values), so the runs match.
+// the volume correction, the extension under the ball copies positive values), so the runs agree
+// but for the ball's far field: with several level sets its kernels run on its box and psi
+// beyond the band is not advected (effects/level_set/level_set.hpp). Measured after 20 steps:
+// centroid and velocity equal to the last digit, kinetic energy 1.1e-12 apart (relative);
+// asserted to 1e-9 relative, far below anything the two scenes could differ in physically.
 TEST(LevelSets, PoolFillingTheTankIsTheOneLevelSetTank) {
   RunOptions opt;
   opt.progress = false;
@@ -71,11 +75,10 @@ TEST(LevelSets, PoolFillingTheTankIsTheOneLevelSetTank) {
   b.run();
   const auto& da = a.state().diag;
   const auto& db = b.state().diag;
-  // Round-off: the same expressions in the same order (measured: equal to the last digit).
-  EXPECT_NEAR(da.at("solid_ball_cy"), db.at("solid_cy"), 1e-12);
-  EXPECT_NEAR(da.at("solid_ball_vy"), db.at("solid_vy"), 1e-12);
+  EXPECT_NEAR(da.at("solid_ball_cy"), db.at("solid_cy"), 1e-9 * db.at("solid_cy"));
+  EXPECT_NEAR(da.at("solid_ball_vy"), db.at("solid_vy"), 1e-9 * std::abs(db.at("solid_vy")));
   EXPECT_LT(da.at("solid_ball_vy"), -0.005); // it moved
-  EXPECT_NEAR(da.at("kinetic_energy"), db.at("kinetic_energy"), 1e-12 * db.at("kinetic_energy"));
+  EXPECT_NEAR(da.at("kinetic_energy"), db.at("kinetic_energy"), 1e-9 * db.at("kinetic_energy"));
 }
 
 // cases/sphere_collision at R = 4 cells (48 x 24 x 24): two soft spheres on two level sets close

@@ -40,8 +40,8 @@ void multiphase(const Grid& g, Fields& f) {
   put("extendSweep.multiphase", sumAbs(fl, cellRange(g)) + sumAbs(known, cellRange(g)));
   const Range3 box = multiphase::boxWhere(b, -kappa, cellRange(g));
   put("boxWhere", box.b[0] + 2.0 * box.b[1] + 3.0 * box.b[2] + 5.0 * box.e[0] + 7.0 * box.e[1] + 11.0 * box.e[2]);
-  multiphase::copyOn(fl2, b, box);
-  put("copyOn", sumAbs(fl2, cellRange(g)));
+  copyCells(fl2, b, box);
+  put("copyCells", sumAbs(fl2, cellRange(g)));
   const VecField bu{mk(g, "body_u"), mk(g, "body_v"), mk(g, "body_w")};
   multiphase::setBodyVelocity(b, kappa, 0.2, -0.1, 0.05, bu, nodeRange(g));
   put("setBodyVelocity", sumAbs(bu, nodeRange(g)));

@@ -102,7 +102,8 @@ Field Elasticity::solidPsi(State& st) const {
   if (psiFields_.size() == 1) return psi;
   const Range3 all = cellRange(st.grid, st.grid.ng); // the level sets' ghosts are fresh
   Kokkos::deep_copy(psi, st.fields.scalar(psiFields_[0]));
-  for (size_t i = 1; i < psiFields_.size(); ++i) maxInto(psi, st.fields.scalar(psiFields_[i]), all);
+  for (size_t i = 1; i < psiFields_.size(); ++i) // outside its box a body's psi is far below the others'
+    maxInto(psi, st.fields.scalar(psiFields_[i]), within(st.activeBox(psiFields_[i]), st.grid.ng, all));
   return psi;
 }
 

@@ -28,13 +28,16 @@ void LevelSet::advect(State& st) {
   exchangeVelocity(st); // face speeds need the nodes on the owned cells' high faces
   const double dt = st.dt;
   cellFaceSpeeds(g, u, cells, flux_); // u is frozen: once for both stages and every level set
+  updateBoxes(st, false);              // several level sets: each on its own box
   for (auto& l : ls_) {
     Field psi = st.fields.scalar(l.info.field);
-    Kokkos::deep_copy(old, psi);
+    const Range3* b = box(st, l);
+    if (b) copyCells(old, psi, within(b, g.ng, cellRange(g, g.ng)));
+    else Kokkos::deep_copy(old, psi);
     VOIGT_UNROLL
     for (int stage = 0; stage < 2; ++stage) {
       refreshGhosts(st, psi);
-      advanceCellAdvection(g, psi, old, cells, limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
+      advanceCellAdvection(g, psi, old, within(b, 0, cells), limiter_, dt, stage == 0 ? 1.0 : 0.5, false, flux_);
     }
     refreshGhosts(st, psi);
   }
@@ -51,8 +54,8 @@ void LevelSet::blend(State& st) {
     const double kappa = l.info.geometry.kappa(g);
     if (i == 0)
       blendProperties(psi, kappa, l.rho, rhoF_, l.mu, muF_, rho, mu, cellRange(g, g.ng), l.harmonicMu);
-    else
-      blendOver(psi, kappa, l.rho, l.mu, rho, mu, cellRange(g, g.ng), l.harmonicMu);
+    else // outside its box H = 0: nothing to lay over
+      blendOver(psi, kappa, l.rho, l.mu, rho, mu, within(box(st, l), g.ng, cellRange(g, g.ng)), l.harmonicMu);
   }
   st.propertiesChanged = true;
 }
@@ -67,10 +70,10 @@ void LevelSet::diagnose(State& st) {
     LevelSetInstance& l = ls_[i];
     const Field psi = st.fields.scalar(l.info.field);
     const double kappa = l.info.geometry.kappa(g);
-    PhaseMeasures m = localPhaseMeasures(g, psi, kappa);
+    PhaseMeasures m = localPhaseMeasures(g, psi, kappa, box(st, l));
     if (covered(i)) { // the fluid's volume: what later level sets leave (multiphase.cpp)
       double dv;
-      multiphase::localCoveredVolume(g, psi, kappa, cover(st, i), m.volume, dv);
+      multiphase::localCoveredVolume(g, psi, kappa, cover(st, i), m.volume, dv, box(st, l));
     }
     double loc[3] = {m.volume, m.sharpVolume, m.area}, glob[3];
     MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);

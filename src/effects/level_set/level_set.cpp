@@ -130,6 +130,7 @@ void LevelSet::setup(State& st) {
     if (l.fastMarching) l.fm = fastMarching(st.grid, psi);
     refreshGhosts(st, psi);
   }
+  updateBoxes(st, true);
   hideUnderSolids(st);
   for (auto& l : ls_)
     if (l.moving) {

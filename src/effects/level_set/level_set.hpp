@@ -25,6 +25,12 @@ struct LevelSetInstance {
   bool harmonicMu = false;       // viscosity_blend: harmonic
   bool fastMarching = true;
   bool solid = false;
+  // Several level sets: the global cells (indices [b, e)) where psi > -reach, reach = band + 1
+  // cells (the re-initialisation's band and its far bound's neighbours; the elastic stress band,
+  // kappa + 3 cells by default, lies within); every kernel of this level set runs on this box
+  // grown by 2 cells (State::activeBoxes: a step moves psi by less than a cell), and outside it
+  // psi stays <= -reach, as it was (a far field).
+  Range3 global{{0, 0, 0}, {0, 0, 0}};
   bool moving = false;           // level_sets[i].velocity given: the body's initial velocity
   double velocity[3] = {0, 0, 0};            // its phase has a shear modulus: fluids' level sets are extended under it
   bool globalCorrection = true;  // volume_correction: global (default) or none
@@ -55,6 +61,7 @@ class LevelSet : public Effect {
   void loadState(const nlohmann::json& j) override;
   void restored(State& st) override {
     for (auto& l : ls_) refreshGhosts(st, st.fields.scalar(l.info.field));
+    updateBoxes(st, true);
   }
 
   // Stages (public so tests can drive them).
@@ -70,6 +77,10 @@ class LevelSet : public Effect {
   // Several level sets: each fluid's psi extended under every solid body (kernels/multiphase.hpp),
   // and the part of a fluid's volume the later level sets leave uncovered.
   void hideUnderSolids(State& st);
+  // The boxes (several level sets): from the previous box grown by 2 cells (a step moves psi by
+  // less than a cell), or over all cells (setup, restart); published in State::activeBoxes.
+  void updateBoxes(State& st, bool everywhere);
+  const Range3* box(const State& st, const LevelSetInstance& l) const { return st.activeBox(l.info.field); }
   bool covered(size_t i) const { return !single() && !ls_[i].solid && i + 1 < ls_.size(); }
   Field cover(State& st, size_t i) const; // PROD_{j>i} (1 - H_j) in "level_set_cover"
   bool hides_ = false; // some fluid level set lies under a solid one

@@ -5,7 +5,11 @@
 //   zone and a cell beyond then see the fluid that surrounds the body; deeper inside psi_f
 //   is covered (H_b = 1) and left as it is. The sweeps run on the box of the cells to fill.
 //   Covered volume: V_f = INT H(psi_f) PROD_{j>f} (1 - H(psi_j)) dV, what the blend gives the fluid.
+#include <mpi.h>
+
+#include <climits>
 #include <cmath>
+#include <vector>
 
 #include "core/boundary.hpp"
 #include "core/field_names.hpp"
@@ -14,12 +18,50 @@
 
 namespace voigt {
 
+// On the fluid's box: outside a later level set's box its psi is <= -reach, so 1 - H = 1 exactly.
 Field LevelSet::cover(State& st, size_t i) const {
   const Grid& g = st.grid;
   Field c = st.fields.scalar("level_set_cover");
+  const Range3 r = within(box(st, ls_[i]), 0, cellRange(g));
   for (size_t j = i + 1; j < ls_.size(); ++j)
-    multiphase::cover(st.fields.scalar(ls_[j].info.field), ls_[j].info.geometry.kappa(g), c, j == i + 1, cellRange(g));
+    multiphase::cover(st.fields.scalar(ls_[j].info.field), ls_[j].info.geometry.kappa(g), c, j == i + 1, r);
   return c;
+}
+
+void LevelSet::updateBoxes(State& st, bool everywhere) {
+  if (single()) return; // one level set: every kernel on every cell, as always
+  const Grid& g = st.grid;
+  const double h = LevelSetGeometry::hMin(g);
+  std::vector<int> lohi(6 * ls_.size()); // per level set: lo[3], -hi[3] (one MIN reduction)
+  for (size_t i = 0; i < ls_.size(); ++i) {
+    const LevelSetInstance& l = ls_[i];
+    const double reach = (l.info.geometry.bandCells + 1) * h; // the band and far_bound's neighbours
+    const Range3* old = box(st, l);
+    const Range3 search = everywhere || !old ? cellRange(g) : within(old, 0, cellRange(g));
+    const Range3 b = multiphase::boxWhere(st.fields.scalar(l.info.field), -reach, search);
+    const bool empty = b.e[0] <= b.b[0];
+    for (int d = 0; d < 3; ++d) { // local -> global cell index: + c0 - ng
+      lohi[6 * i + d] = empty ? INT_MAX : b.b[d] + g.c0[d] - g.ng;
+      lohi[6 * i + 3 + d] = empty ? INT_MAX : -(b.e[d] + g.c0[d] - g.ng);
+    }
+  }
+  MPI_Allreduce(MPI_IN_PLACE, lohi.data(), int(lohi.size()), MPI_INT, MPI_MIN, g.comm);
+  for (size_t i = 0; i < ls_.size(); ++i) {
+    LevelSetInstance& l = ls_[i];
+    Range3 local{{0, 0, 0}, {0, 0, 0}};
+    if (lohi[6 * i] != INT_MAX) {
+      for (int d = 0; d < 3; ++d) {
+        l.global.b[d] = lohi[6 * i + d];
+        l.global.e[d] = -lohi[6 * i + 3 + d];
+        local.b[d] = l.global.b[d] - g.c0[d] + g.ng;
+        local.e[d] = l.global.e[d] - g.c0[d] + g.ng;
+      }
+      local = within(&local, 2, cellRange(g)); // may be empty on this rank
+    } else {
+      l.global = Range3{{0, 0, 0}, {0, 0, 0}};
+    }
+    st.activeBoxes[l.info.field] = local;
+  }
 }
 
 void LevelSet::hideUnderSolids(State& st) {
@@ -37,12 +79,12 @@ void LevelSet::hideUnderSolids(State& st) {
     for (const LevelSetInstance& fl : ls_) {
       if (fl.solid) continue;
       Field pf = st.fields.scalar(fl.info.field);
-      multiphase::markSources(pb, outside, known, cellRange(g, g.ng));
-      const Range3 box = multiphase::boxWhere(pb, -outside, cells); // this rank's cells to fill
+      multiphase::markSources(pb, outside, known, within(box(st, body), g.ng, cellRange(g, g.ng)));
+      const Range3 fill = multiphase::boxWhere(pb, -outside, within(box(st, body), 0, cells)); // this rank's cells to fill
       for (int s = 0; s < sweeps; ++s) { // every rank: the exchanges are collective
-        multiphase::extendSweep(pb, outside, inside, pf, known, tmp, knownTmp, box);
-        multiphase::copyOn(pf, tmp, box);
-        multiphase::copyOn(known, knownTmp, box);
+        multiphase::extendSweep(pb, outside, inside, pf, known, tmp, knownTmp, fill);
+        copyCells(pf, tmp, fill);
+        copyCells(known, knownTmp, fill);
         st.halo->exchange(std::vector<Field>{pf, known});
         fillCellGhostsEven(g, pf);
         fillCellGhostsEven(g, known);

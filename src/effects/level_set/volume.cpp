@@ -39,17 +39,18 @@ void LevelSet::correctVolume(State& st, size_t i) {
   Field psi = st.fields.scalar(l.info.field);
   const double kappa = l.info.geometry.kappa(g), hmin = LevelSetGeometry::hMin(g);
   double loc[3] = {0, 0, 0}, glob[3];
+  const Range3* b = box(st, l); // several level sets: outside it H = H' = 0
   if (covered(i))
-    multiphase::localCoveredVolume(g, psi, kappa, cover(st, i), loc[0], loc[1]);
+    multiphase::localCoveredVolume(g, psi, kappa, cover(st, i), loc[0], loc[1], b);
   else
-    localVolumeAndDerivative(g, psi, kappa, loc[0], loc[1]);
+    localVolumeAndDerivative(g, psi, kappa, loc[0], loc[1], b);
   if (std::any_of(open_, open_ + 6, [](bool b) { return b; }) && st.fields.allocated(field::velocity))
     loc[2] = localOpenBoundaryFlux(g, psi, st.fields.vector(field::velocity), kappa, open_);
   MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
   l.target -= st.dt * glob[2];
   double s = 0;
   if (glob[1] > 0) s = std::clamp((l.target - glob[0]) / glob[1], -0.1 * hmin, 0.1 * hmin);
-  if (s != 0) shiftField(g, psi, s);
+  if (s != 0) shiftField(g, psi, s, b);
   l.shiftTotal += std::abs(s);
   // Volume the correction put back or took away so far (|s| times the smoothed
   // interface area), relative: what the numerics moved, for energy budgets.
