@@ -79,8 +79,9 @@ KOKKOS_INLINE_FUNCTION double det3(const double m[3][3]) {
 // Local sums of the solid's moments (SolidAcc::s: w, w x, w v, w x x about the domain
 // centre, w = H(psi)) and the gap to each target (SolidAcc::m) over the owned cells, as
 // effects/solid_body.cpp's header defines them; the caller reduces them over ranks.
+// box: only there (several level sets: psi is far below -band outside it).
 inline SolidAcc solidMoments(const Grid& g, const Field& psi, const VecField& u, double kappa, double band,
-                             double hm, const SolidTargets& tg) {
+                             double hm, const SolidTargets& tg, const Range3* box = nullptr) {
   const int ng = g.ng, c0 = g.c0[0], c1 = g.c0[1], c2 = g.c0[2];
   const double h0 = g.h[0], h1 = g.h[1], h2 = g.h[2];
   const double lo0 = g.lo[0], lo1 = g.lo[1], lo2 = g.lo[2];
@@ -88,7 +89,7 @@ inline SolidAcc solidMoments(const Grid& g, const Field& psi, const VecField& u,
   const double r0 = 0.5 * (g.lo[0] + g.hi[0]), r1 = 0.5 * (g.lo[1] + g.hi[1]), r2 = 0.5 * (g.lo[2] + g.hi[2]);
   SolidAcc acc;
   reduce_rows(
-      "solid_body_moments", cellRange(g),
+      "solid_body_moments", within(box, 0, cellRange(g)),
       KOKKOS_LAMBDA(int i, int j, int k, SolidAcc& a) {
         const double p = psi(i, j, k);
         const double x[3] = {lo0 + (i - ng + c0 + 0.5) * h0, lo1 + (j - ng + c1 + 0.5) * h1,

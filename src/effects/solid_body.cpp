@@ -43,10 +43,12 @@
 // body with columns solid_a_..., solid_b_... and the gap between each pair (kernels/contact.hpp),
 //   solid_gap_a_b, solid_contact_a_b   as above, the pair's gap: min of -(psi_a + psi_b) over cells
 //                                  inside both bands (kernels/contact.hpp); negative: overlap
-// and summary.json "solid_body" has "bodies" (per name, as above) and "pairs".
+// and summary.json "solid_body" has "bodies" (per name, as above) and "pairs"; `pairs: false`
+// leaves the pairs out (a bed of many bodies: N (N - 1) / 2 of them).
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "core/field_names.hpp"
 #include "core/index_space.hpp"
@@ -125,6 +127,7 @@ class SolidBody : public Effect {
     contacts_ = sec.boolean("contacts", true);
     contactCells_ = sec.number("contact_gap", 1.0, Range::positive());
     bending_ = sec.boolean("bending", true);
+    pairsOn_ = sec.boolean("pairs", true); // several bodies: the gap between every two (N (N - 1) / 2 columns)
     std::vector<std::string> names;
     if (contacts_) {
       if (s.obstacles.size() + 6 > size_t(kSolidTargets)) sec.fail("contacts", "too many obstacles to track");
@@ -158,7 +161,7 @@ class SolidBody : public Effect {
       bodies_.push_back(b);
     }
     pairs_.clear();
-    for (size_t a = 0; a < bodies_.size(); ++a)
+    for (size_t a = 0; pairsOn_ && a < bodies_.size(); ++a)
       for (size_t b = a + 1; b < bodies_.size(); ++b) pairs_.emplace_back(bodies_[a].info.name + "_" + bodies_[b].info.name);
     sec.finish();
     g_ = s.gravity;
@@ -217,7 +220,7 @@ class SolidBody : public Effect {
   void measure(State& st, double time);
   void measure(State& st, Body& b, double time);
 
-  bool contacts_ = true, bending_ = true;
+  bool contacts_ = true, bending_ = true, pairsOn_ = true;
   double contactCells_ = 1, hmin_ = 1;
   Vec3 g_{0, 0, 0};
   SolidTargets targets_;
@@ -232,21 +235,24 @@ void SolidBody::measure(State& st, double time) {
   const Grid& g = st.grid;
   double diag2 = 0;
   for (int d = 0; d < 3; ++d) diag2 += (g.hi[d] - g.lo[d]) * (g.hi[d] - g.lo[d]);
+  std::vector<double> gaps(pairs_.size(), 1e300); // this rank's, reduced in one message
   size_t q = 0;
-  for (size_t a = 0; a < bodies_.size(); ++a)
+  for (size_t a = 0; pairsOn_ && a < bodies_.size(); ++a)
     for (size_t c = a + 1; c < bodies_.size(); ++c, ++q) {
-      const Field pa = st.fields.scalar(bodies_[a].info.field), pc = st.fields.scalar(bodies_[c].info.field);
-      // Within both bands psi is a distance; farther apart than that: the domain's diagonal.
-      const double reach = std::min(bodies_[a].info.geometry.band(g), bodies_[c].info.geometry.band(g));
       // Several level sets: only where both boxes meet can both be within their bands.
       const Range3 both = within(st.activeBox(bodies_[a].info.field), 0,
                                  within(st.activeBox(bodies_[c].info.field), 0, cellRange(g)));
-      double gap = localBodyGap(pa, pc, reach, both);
-      MPI_Allreduce(MPI_IN_PLACE, &gap, 1, MPI_DOUBLE, MPI_MIN, g.comm);
-      pairs_[q].update(std::min(gap, std::sqrt(diag2)), time, contactCells_ * hmin_);
-      st.diag["solid_gap_" + pairs_[q].name] = pairs_[q].gap;
-      st.diag["solid_contact_" + pairs_[q].name] = pairs_[q].in;
+      if (both.e[0] <= both.b[0]) continue;
+      // Within both bands psi is a distance; farther apart than that: the domain's diagonal.
+      const double reach = std::min(bodies_[a].info.geometry.band(g), bodies_[c].info.geometry.band(g));
+      gaps[q] = localBodyGap(st.fields.scalar(bodies_[a].info.field), st.fields.scalar(bodies_[c].info.field), reach, both);
     }
+  if (!gaps.empty()) MPI_Allreduce(MPI_IN_PLACE, gaps.data(), int(gaps.size()), MPI_DOUBLE, MPI_MIN, g.comm);
+  for (q = 0; q < pairs_.size(); ++q) {
+    pairs_[q].update(std::min(gaps[q], std::sqrt(diag2)), time, contactCells_ * hmin_);
+    st.diag["solid_gap_" + pairs_[q].name] = pairs_[q].gap;
+    st.diag["solid_contact_" + pairs_[q].name] = pairs_[q].in;
+  }
 }
 
 void SolidBody::measure(State& st, Body& body, double time) {
@@ -255,7 +261,8 @@ void SolidBody::measure(State& st, Body& body, double time) {
   const VecField u = st.fields.vector(field::velocity);
   const double kappa = body.info.geometry.kappa(g), band = 2 * hmin_, hm = hmin_;
   const SolidTargets tg = targets_;
-  SolidAcc acc = solidMoments(g, psi, u, kappa, band, hm, tg); // moments about the domain centre r
+  // moments about the domain centre r; several level sets: on the body's box
+  SolidAcc acc = solidMoments(g, psi, u, kappa, band, hm, tg, st.activeBox(body.info.field));
   const double r0 = 0.5 * (g.lo[0] + g.hi[0]), r1 = 0.5 * (g.lo[1] + g.hi[1]), r2 = 0.5 * (g.lo[2] + g.hi[2]);
   MPI_Allreduce(MPI_IN_PLACE, acc.s, kSolidSums, MPI_DOUBLE, MPI_SUM, g.comm);
   MPI_Allreduce(MPI_IN_PLACE, acc.m, kSolidTargets, MPI_DOUBLE, MPI_MIN, g.comm);

@@ -1,0 +1,46 @@
+#!/usr/bin/env python3
+"""The porous bed on K level sets against one (perf/level_sets/README.md): for each run folder,
+steps, wall time, the section-averaged gradient over y = 0.10-0.25 m at the last field output,
+and the bed's centroid rise (with several level sets: the volume-weighted mean of the groups'
+centroids) at the end and at its largest.
+
+  bed_compare.py RUN [RUN ...]
+"""
+import json
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "cases", "porous_bed"))
+import run_data as R  # noqa: E402
+from voigt_post import series  # noqa: E402
+
+
+def centroid(d):
+    cols = series.timeseries(d)
+    t = np.array(cols["t"])
+    if "solid_cy" in cols:
+        return t, np.array(cols["solid_cy"])
+    groups = sorted({k[len("solid_"):-len("_cy")] for k in cols if k.startswith("solid_") and k.endswith("_cy")})
+    v = np.array([cols["solid_%s_volume" % g] for g in groups])
+    y = np.array([cols["solid_%s_cy" % g] for g in groups])
+    return t, (v * y).sum(axis=0) / v.sum(axis=0)
+
+
+def main():
+    print("| run | level sets | steps | wall (s) | s/step | section gradient (Pa/m) at t | centroid rise (mm) | peak rise (mm) at t |")
+    print("|---|---|---|---|---|---|---|---|")
+    for d in sys.argv[1:]:
+        s = json.load(open(os.path.join(d, "summary.json")))
+        n = len(s["level_sets"]) if "level_sets" in s else 1
+        t, cy = centroid(d)
+        st, sg = R.RunDir(d).section_gradient()
+        pk, pt = R.peak_rise(t, cy)
+        print(f"| {os.path.basename(os.path.normpath(d))} | {n} | {s['steps']} | {s['wall_seconds']:.0f} | "
+              f"{s['wall_seconds'] / max(1, s['steps_this_run']):.4f} | {sg:.1f} at {st:.2f} | "
+              f"{1000 * (cy[-1] - cy[0]):.2f} | {pk:.2f} at {pt:.3f} |")
+
+
+if __name__ == "__main__":
+    main()
