@@ -12,10 +12,6 @@ using namespace voigt;
 
 namespace {
 
-Scene caseScene(const std::string& rel, std::vector<std::string> sets) {
-  return loadSceneWithEffects(std::string(VOIGT_SOURCE_DIR) + "/" + rel, std::move(sets));
-}
-
 // Cell-centred field value at global cell (i, j, k), from whichever rank owns it.
 double cellValue(const State& st, const std::string& name, int i, int j, int k) {
   const Grid& g = st.grid;
@@ -41,7 +37,7 @@ TEST(CaseSmoke, FallingBlockFallsAndHitsTheCylinder) {
   opt.progress = false;
   opt.endTime = 0.09;
   // The cylinder 5 mm left of the block's centre (the scene has 1 mm): a clear tip by 0.09 s.
-  Simulation sim(caseScene("cases/falling_block/falling_block.yaml",
+  Simulation sim(test::repoScene("cases/falling_block/falling_block.yaml",
                            {"domain.cells=[20,20,20]", "solid_body.contact_gap=2",
                             "obstacles=[{type: cylinder, center: [0.045, 0.0375, 0.05], radius: 0.01, axis: z}]"}),
                  MPI_COMM_WORLD, opt);
@@ -81,7 +77,7 @@ TEST(CaseSmoke, PorousBedPressureFallsAcrossTheBed) {
   RunOptions opt;
   opt.progress = false;
   opt.endTime = 0.05;
-  Simulation sim(caseScene("cases/porous_bed/porous_bed.yaml", {"domain.cells=[20,60,20]"}), MPI_COMM_WORLD, opt);
+  Simulation sim(test::repoScene("cases/porous_bed/porous_bed.yaml", {"domain.cells=[20,60,20]"}), MPI_COMM_WORLD, opt);
   sim.run();
   const State& st = sim.state();
   // Midline cells (x = z = 5.5 cm: cell 10 of 20 starts there) below the bed (y = 3 cm,

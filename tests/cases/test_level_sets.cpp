@@ -12,10 +12,6 @@ using namespace voigt;
 
 namespace {
 
-Scene caseScene(const std::string& rel, std::vector<std::string> sets) {
-  return loadSceneWithEffects(std::string(VOIGT_SOURCE_DIR) + "/" + rel, std::move(sets));
-}
-
 nlohmann::json summaryOf(Simulation& sim, const std::string& effect) {
   nlohmann::json j;
   sim.effect(effect)->summary(sim.state(), j);
@@ -30,7 +26,7 @@ TEST(LevelSets, BallDroppedIntoPoolReachesTheFloorKeepingBothVolumes) {
   RunOptions opt;
   opt.progress = false;
   opt.endTime = 0.25;
-  Simulation sim(caseScene("cases/ball_pool/ball_pool.yaml", {}), MPI_COMM_WORLD, opt);
+  Simulation sim(test::repoScene("cases/ball_pool/ball_pool.yaml", {}), MPI_COMM_WORLD, opt);
   sim.run(); // a non-finite field or a collapsed dt throws BlowUp
   const auto ls = summaryOf(sim, "level_set")["level_sets"];
   // The bound: each phase's volume within 1 % to the end (measured: water 1.2e-3 at
@@ -69,9 +65,9 @@ TEST(LevelSets, PoolFillingTheTankIsTheOneLevelSetTank) {
   for (const char* s : {"fluid=water", "level_sets=null", "output=null", "level_set={phase: rubber, shape: {type: sphere, center: [0.03, 0.06, 0.03], radius: 0.01}}",
                         "elasticity={}", "solid_body={}"})
     one.push_back(s);
-  Simulation a(caseScene("cases/ball_pool/ball_pool.yaml", two), MPI_COMM_WORLD, opt);
+  Simulation a(test::repoScene("cases/ball_pool/ball_pool.yaml", two), MPI_COMM_WORLD, opt);
   a.run();
-  Simulation b(caseScene("cases/ball_pool/ball_pool.yaml", one), MPI_COMM_WORLD, opt);
+  Simulation b(test::repoScene("cases/ball_pool/ball_pool.yaml", one), MPI_COMM_WORLD, opt);
   b.run();
   const auto& da = a.state().diag;
   const auto& db = b.state().diag;
@@ -88,7 +84,7 @@ TEST(LevelSets, PoolFillingTheTankIsTheOneLevelSetTank) {
 TEST(LevelSets, SpheresCollideWithoutMergingAndRebound) {
   RunOptions opt;
   opt.progress = false;
-  Simulation sim(caseScene("cases/sphere_collision/sphere_collision.yaml", {"domain.cells=[48,24,24]"}), MPI_COMM_WORLD,
+  Simulation sim(test::repoScene("cases/sphere_collision/sphere_collision.yaml", {"domain.cells=[48,24,24]"}), MPI_COMM_WORLD,
                  opt);
   sim.run();
   const auto j = summaryOf(sim, "solid_body")["solid_body"];

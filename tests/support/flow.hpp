@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "app/simulation.hpp"
 #include "core/index_space.hpp"
@@ -14,6 +15,12 @@ namespace voigt::test {
 
 inline Scene scene(const std::string& yaml) {
   return loadSceneWithEffectsFromString(yaml, "test");
+}
+
+// A scene file of the repository (path relative to its root) with --set style overrides,
+// loaded as `voigt run` loads it.
+inline Scene repoScene(const std::string& rel, std::vector<std::string> sets = {}) {
+  return loadSceneWithEffects(std::string(VOIGT_SOURCE_DIR) + "/" + rel, std::move(sets));
 }
 
 // The SceneError a scene raises when loaded and set up ("" if none).
