@@ -83,7 +83,8 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     const Section& ls = secs[i];
     LevelSetInstance l;
     l.info = pub.levelSets[i];
-    for (const char* k : {"smoothing", "band", "phase", "name"}) ls.has(k); // validated in publish()
+    for (const char* k : {"smoothing", "band", "phase"}) ls.has(k); // validated in publish()
+    if (!l.info.name.empty()) ls.has("name");                        // only level_sets entries have one
     l.rho = s.materials.at(l.info.phase).density;
     l.solid = s.materials.at(l.info.phase).shearModulus > 0;
     l.mu = s.materials.at(l.info.phase).viscosity;
@@ -91,14 +92,14 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     // Default: march unless the shape is already an exact distance.
     l.fastMarching = ls.boolean("fast_marching", !l.shape.exactDistance);
     l.globalCorrection = ls.choice("volume_correction", "global", {"global", "none"}) == "global";
-    // viscosity_blend: linear (the paper's Eq. 2) or harmonic, 1 / mu = H / mu1 + (1 - H) / mu2, the
-    // series resistance of the two fluids to a shear across the zone (cases/rising_bubble/README.md).
     // velocity: a body's initial velocity, laid over the scene's initial field (multiphase.hpp).
     l.moving = ls.has("velocity");
     if (l.moving && std::find(s.effects.begin(), s.effects.end(), "navier_stokes") == s.effects.end())
       ls.fail("velocity", "needs navier_stokes (the initial velocity of a body in the flow)");
     const auto v = ls.vec3("velocity", {0, 0, 0});
     for (int d = 0; d < 3; ++d) l.velocity[d] = v[d];
+    // viscosity_blend: linear (the paper's Eq. 2) or harmonic, 1 / mu = H / mu1 + (1 - H) / mu2, the
+    // series resistance of the two fluids to a shear across the zone (cases/rising_bubble/README.md).
     l.harmonicMu = ls.choice("viscosity_blend", "linear", {"linear", "harmonic"}) == "harmonic";
     if (l.harmonicMu && !(l.mu > 0 && muF_ > 0)) ls.fail("viscosity_blend", "harmonic needs both phases' viscosity > 0");
     ls.finish();
