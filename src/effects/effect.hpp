@@ -24,6 +24,7 @@ struct LevelSetInfo {
   std::string name;  // "" for the single `level_set:` section
   std::string field; // its cell field in the FieldStore (and outputs, checkpoints)
   std::string phase; // the material where psi > 0
+  bool solid = false; // its phase has a shear modulus (an elastic body, not a fluid)
   LevelSetGeometry geometry; // smoothing half-width and re-initialisation band of Eq. (4), in cells
   std::string label() const { return name.empty() ? "level_set" : name; } // for messages
 };

@@ -68,8 +68,10 @@ class Reinit : public Effect {
       for (size_t i = 0; i < ls_.size(); ++i) { // band cells summed, gradient error the largest
         re_->setBand(ls_[i].geometry.kappa(st.grid), ls_[i].geometry.band(st.grid));
         const ReinitStats si = re_->run(*st.halo, st.fields.scalar(ls_[i].field), st.activeBox(ls_[i].field));
-        if (i == 0) s = si;
-        if (i == 0) continue;
+        if (i == 0) {
+          s = si;
+          continue;
+        }
         s.bandCells += si.bandCells;
         s.maxGradError = std::max(s.maxGradError, si.maxGradError);
       }

@@ -175,7 +175,8 @@ class SolidBody : public Effect {
     hmin_ = LevelSetGeometry::hMin(g);
     double diag2 = 0;
     for (int d = 0; d < 3; ++d) diag2 += (g.hi[d] - g.lo[d]) * (g.hi[d] - g.lo[d]);
-    binR_ = int(std::ceil(0.5 * std::sqrt(diag2) / hmin_)) + 1; // columns cover the half diagonal
+    diagonal_ = std::sqrt(diag2);
+    binR_ = int(std::ceil(0.5 * diagonal_ / hmin_)) + 1; // columns cover the half diagonal
     const int nb = 2 * binR_ + 1;
     if (bending_) bins_ = Kokkos::View<double* [4], MemSpace>("solid_body_columns", size_t(nb) * nb);
     for (Body& b : bodies_)
@@ -221,7 +222,7 @@ class SolidBody : public Effect {
   void measure(State& st, Body& b, double time);
 
   bool contacts_ = true, bending_ = true, pairsOn_ = true;
-  double contactCells_ = 1, hmin_ = 1;
+  double contactCells_ = 1, hmin_ = 1, diagonal_ = 1; // diagonal_: the domain's (setup)
   Vec3 g_{0, 0, 0};
   SolidTargets targets_;
   std::vector<Body> bodies_;
@@ -233,8 +234,6 @@ class SolidBody : public Effect {
 void SolidBody::measure(State& st, double time) {
   for (Body& b : bodies_) measure(st, b, time);
   const Grid& g = st.grid;
-  double diag2 = 0;
-  for (int d = 0; d < 3; ++d) diag2 += (g.hi[d] - g.lo[d]) * (g.hi[d] - g.lo[d]);
   std::vector<double> gaps(pairs_.size(), 1e300); // this rank's, reduced in one message
   size_t q = 0;
   for (size_t a = 0; pairsOn_ && a < bodies_.size(); ++a)
@@ -249,7 +248,7 @@ void SolidBody::measure(State& st, double time) {
     }
   if (!gaps.empty()) MPI_Allreduce(MPI_IN_PLACE, gaps.data(), int(gaps.size()), MPI_DOUBLE, MPI_MIN, g.comm);
   for (q = 0; q < pairs_.size(); ++q) {
-    pairs_[q].update(std::min(gaps[q], std::sqrt(diag2)), time, contactCells_ * hmin_);
+    pairs_[q].update(std::min(gaps[q], diagonal_), time, contactCells_ * hmin_);
     st.diag["solid_gap_" + pairs_[q].name] = pairs_[q].gap;
     st.diag["solid_contact_" + pairs_[q].name] = pairs_[q].in;
   }
@@ -300,12 +299,10 @@ void SolidBody::measure(State& st, Body& body, double time) {
   else
     dg.erase(P + "bending"); // a restart from a run that measured it: empty from here
   dg[P + "potential_energy"] = -body.rho * vol * (g_[0] * c[0] + g_[1] * c[1] + g_[2] * c[2]);
-  double diag2 = 0;
-  for (int d = 0; d < 3; ++d) diag2 += (g.hi[d] - g.lo[d]) * (g.hi[d] - g.lo[d]);
   const double thr = contactCells_ * hmin_;
   for (size_t q = 0; q < body.contacts.size(); ++q) {
     Contact& ct = body.contacts[q];
-    ct.update(std::min(acc.m[q], std::sqrt(diag2)), time, thr); // no interface near: the domain's diagonal
+    ct.update(std::min(acc.m[q], diagonal_), time, thr); // no interface near: the domain's diagonal
     dg[P + "gap_" + ct.name] = ct.gap;
     dg[P + "contact_" + ct.name] = ct.in;
   }

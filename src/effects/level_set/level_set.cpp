@@ -46,6 +46,7 @@ LevelSetInfo readInfo(const Scene& s, const Section& ls, bool named) {
   if (!s.materials.count(info.phase)) ls.fail("phase", "names no material in 'materials'");
   if (info.phase == s.fluid)
     ls.fail("phase", "must differ from 'fluid' (" + s.fluid + "), the material where no level set is positive");
+  info.solid = s.materials.at(info.phase).shearModulus > 0;
   info.geometry = levelSetGeometry(ls);
   return info;
 }
@@ -66,7 +67,7 @@ void LevelSet::publish(const Scene& s, Published& pub) const {
   // under a body is its extension (kernels/multiphase.hpp), which must not cover the body.
   bool solidSeen = false;
   for (size_t i = 0; i < secs.size(); ++i) {
-    const bool solid = s.materials.at(pub.levelSets[i].phase).shearModulus > 0;
+    const bool solid = pub.levelSets[i].solid;
     if (!solid && solidSeen)
       secs[i].fail("phase", "is a fluid listed after a solid: list the fluids' level sets first (later ones are laid over earlier ones)");
     solidSeen |= solid;
@@ -86,7 +87,6 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     for (const char* k : {"smoothing", "band", "phase"}) ls.has(k); // validated in publish()
     if (!l.info.name.empty()) ls.has("name");                        // only level_sets entries have one
     l.rho = s.materials.at(l.info.phase).density;
-    l.solid = s.materials.at(l.info.phase).shearModulus > 0;
     l.mu = s.materials.at(l.info.phase).viscosity;
     l.shape = compileShape(ls, "shape", s);
     // Default: march unless the shape is already an exact distance.
@@ -106,7 +106,7 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     ls_.push_back(std::move(l));
   }
   hides_ = false;
-  for (size_t i = 0; i + 1 < ls_.size(); ++i) hides_ |= !ls_[i].solid && ls_.back().solid;
+  for (size_t i = 0; i + 1 < ls_.size(); ++i) hides_ |= !ls_[i].info.solid && ls_.back().info.solid;
   for (int f = 0; f < 6; ++f) open_[f] = s.bc[f].type == BcType::Inflow || s.bc[f].type == BcType::Outflow;
   limiter_ = limiterNamed(s.advection.limiter);
 }

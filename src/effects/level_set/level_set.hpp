@@ -81,7 +81,7 @@ class LevelSet : public Effect {
   // less than a cell), or over all cells (setup, restart); published in State::activeBoxes.
   void updateBoxes(State& st, bool everywhere);
   const Range3* box(const State& st, const LevelSetInstance& l) const { return st.activeBox(l.info.field); }
-  bool covered(size_t i) const { return !single() && !ls_[i].solid && i + 1 < ls_.size(); }
+  bool covered(size_t i) const { return !single() && !ls_[i].info.solid && i + 1 < ls_.size(); }
   Field cover(State& st, size_t i) const; // PROD_{j>i} (1 - H_j) in "level_set_cover"
   bool hides_ = false; // some fluid level set lies under a solid one
 

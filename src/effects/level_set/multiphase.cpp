@@ -72,12 +72,12 @@ void LevelSet::hideUnderSolids(State& st) {
   Field known = st.fields.scalar("level_set_known"), knownTmp = st.fields.scalar("level_set_known_tmp");
   Field tmp = st.fields.scalar("psi_old"); // free outside the advection
   for (const LevelSetInstance& body : ls_) {
-    if (!body.solid) continue;
+    if (!body.info.solid) continue;
     const Field pb = st.fields.scalar(body.info.field);
     const double kappa = body.info.geometry.kappa(g), outside = kappa + h, inside = kappa + 2 * h;
     const int sweeps = int(std::ceil((outside + inside) / h)) + 1;
     for (const LevelSetInstance& fl : ls_) {
-      if (fl.solid) continue;
+      if (fl.info.solid) continue;
       Field pf = st.fields.scalar(fl.info.field);
       multiphase::markSources(pb, outside, known, within(box(st, body), g.ng, cellRange(g, g.ng)));
       const Range3 fill = multiphase::boxWhere(pb, -outside, within(box(st, body), 0, cells)); // this rank's cells to fill
