@@ -1,11 +1,7 @@
 #pragma once
 // Curvature and the capillary force (surface_tension, issue 51).
 //
-// Curvature of the level sets at cell centres (psi > 0 inside: a sphere of radius R has
-// kappa = 2/R, a cylinder 1/R), central differences:
-//   kappa = -div(grad psi / |grad psi|)
-//         = -[psi_xx (psi_y^2 + psi_z^2) + psi_yy (psi_x^2 + psi_z^2) + psi_zz (psi_x^2 + psi_y^2)
-//             - 2 (psi_x psi_y psi_xy + psi_x psi_z psi_xz + psi_y psi_z psi_yz)] / |grad psi|^3
+// Curvature of the level sets at cell centres: kernels/curvature_point.hpp (central differences).
 // At the interface, not across a smeared band: in a cell next to the zero level (psi changes
 // sign across a face) kappa is interpolated linearly to the crossing on each such face and
 // averaged; the other zone cells take it constant along the normal (Jacobi sweeps, the
@@ -22,6 +18,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/index_space.hpp"
+#include "kernels/curvature_point.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/projection_ops.hpp"
 
@@ -34,24 +31,7 @@ inline void cellCurvature(const Grid& g, const Field& psi, const Field& kap, Ran
   const double i0 = 1 / g.h[0], i1 = 1 / g.h[1], i2 = 1 / g.h[2];
   const double kmax = 1 / minOf(g.h[0], minOf(g.h[1], g.h[2]));
   for_each3("cell_curvature", r, KOKKOS_LAMBDA(int i, int j, int k) {
-    const double c = psi(i, j, k);
-    const double px = 0.5 * i0 * (psi(i + 1, j, k) - psi(i - 1, j, k));
-    const double py = 0.5 * i1 * (psi(i, j + 1, k) - psi(i, j - 1, k));
-    const double pz = 0.5 * i2 * (psi(i, j, k + 1) - psi(i, j, k - 1));
-    const double pxx = i0 * i0 * (psi(i + 1, j, k) - 2 * c + psi(i - 1, j, k));
-    const double pyy = i1 * i1 * (psi(i, j + 1, k) - 2 * c + psi(i, j - 1, k));
-    const double pzz = i2 * i2 * (psi(i, j, k + 1) - 2 * c + psi(i, j, k - 1));
-    const double pxy = 0.25 * i0 * i1 *
-                       (psi(i + 1, j + 1, k) - psi(i + 1, j - 1, k) - psi(i - 1, j + 1, k) + psi(i - 1, j - 1, k));
-    const double pxz = 0.25 * i0 * i2 *
-                       (psi(i + 1, j, k + 1) - psi(i + 1, j, k - 1) - psi(i - 1, j, k + 1) + psi(i - 1, j, k - 1));
-    const double pyz = 0.25 * i1 * i2 *
-                       (psi(i, j + 1, k + 1) - psi(i, j + 1, k - 1) - psi(i, j - 1, k + 1) + psi(i, j - 1, k - 1));
-    const double g2 = px * px + py * py + pz * pz;
-    const double num = pxx * (py * py + pz * pz) + pyy * (px * px + pz * pz) + pzz * (px * px + py * py) -
-                       2 * (px * py * pxy + px * pz * pxz + py * pz * pyz);
-    const double kv = g2 > 0.25 ? -num / (g2 * km::sqrt(g2)) : 0.0;
-    kap(i, j, k) = maxOf(-kmax, minOf(kmax, kv));
+    kap(i, j, k) = curvatureAt(psi, i, j, k, i0, i1, i2, kmax); // kernels/curvature_point.hpp
   });
 }
 

@@ -14,6 +14,7 @@
 #include "core/field.hpp"
 #include "core/index_space.hpp"
 #include "kernels/advection.hpp"
+#include "kernels/curvature_point.hpp"
 #include "kernels/heaviside.hpp"
 
 namespace voigt {
@@ -120,18 +121,21 @@ struct PhaseMeasures {
   double volume = 0;      // integral of H(psi): phase 1 volume
   double sharpVolume = 0; // cells with psi > 0 (sharp Heaviside)
   double area = 0;        // integral of delta(psi) |grad psi|: interface area
+  double curvature2 = 0;  // integral of delta(psi) |grad psi| kappa^2: over area, the mean square
+                          // curvature (roughness: grid-scale wrinkles raise it, issue 53)
 };
 
 // Local (this rank's owned cells) sums; the caller reduces over ranks.
-// Needs psi on one ghost layer for the central gradient. box: only there (core/index_space.hpp,
+// Needs psi on one ghost layer (edges too) for the central gradient and the curvature. box: only there (core/index_space.hpp,
 // within: several level sets; psi <= -kappa outside it adds nothing).
 inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double kappa, const Range3* box = nullptr) {
   const double dv = g.cellVolume();
   const double i0 = 0.5 / g.h[0], i1 = 0.5 / g.h[1], i2 = 0.5 / g.h[2];
-  double vol = 0, sharp = 0, area = 0;
+  const double kmax = 1 / minOf(g.h[0], minOf(g.h[1], g.h[2]));
+  double vol = 0, sharp = 0, area = 0, curv2 = 0;
   Kokkos::parallel_reduce(
       "phase_measures", within(box, 0, cellRange(g)).policy(),
-      KOKKOS_LAMBDA(int i, int j, int k, double& v, double& s, double& a) {
+      KOKKOS_LAMBDA(int i, int j, int k, double& v, double& s, double& a, double& c2) {
         const double p = psi(i, j, k);
         v += smoothedHeaviside(p, kappa) * dv;
         s += sharpHeaviside(p) * dv;
@@ -140,11 +144,14 @@ inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double 
           const double gx = (psi(i + 1, j, k) - psi(i - 1, j, k)) * i0;
           const double gy = (psi(i, j + 1, k) - psi(i, j - 1, k)) * i1;
           const double gz = (psi(i, j, k + 1) - psi(i, j, k - 1)) * i2;
-          a += d * km::sqrt(gx * gx + gy * gy + gz * gz) * dv;
+          const double da = d * km::sqrt(gx * gx + gy * gy + gz * gz) * dv;
+          const double kv = curvature::curvatureAt(psi, i, j, k, 2 * i0, 2 * i1, 2 * i2, kmax);
+          a += da;
+          c2 += da * kv * kv;
         }
       },
-      vol, sharp, area);
-  return {vol, sharp, area};
+      vol, sharp, area, curv2);
+  return {vol, sharp, area, curv2};
 }
 
 // Global volume correction (level_set.volume_correction, effects/level_set/volume.cpp).

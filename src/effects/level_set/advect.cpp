@@ -75,8 +75,8 @@ void LevelSet::diagnose(State& st) {
       double dv;
       multiphase::localCoveredVolume(g, psi, kappa, cover(st, i), m.volume, dv, box(st, l));
     }
-    double loc[3] = {m.volume, m.sharpVolume, m.area}, glob[3];
-    MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g.comm);
+    double loc[4] = {m.volume, m.sharpVolume, m.area, m.curvature2}, glob[4];
+    MPI_Allreduce(loc, glob, 4, MPI_DOUBLE, MPI_SUM, g.comm);
     l.volume = glob[0];
     l.sharpVolume = glob[1];
     l.area = glob[2];
@@ -87,6 +87,9 @@ void LevelSet::diagnose(State& st) {
     st.diag["volume_" + (single() ? l.info.phase : l.info.name)] = l.volume;
     st.diag["volume_drift" + l.suffix()] = drift;
     st.diag["interface_area" + l.suffix()] = l.area;
+    // rms mean curvature over the surface (1/m): a smooth body's stays near its shape's value,
+    // cell-scale wrinkles raise it towards 1/h (issue 53; kernels/curvature_point.hpp).
+    st.diag["interface_curvature_rms" + l.suffix()] = l.area > 0 ? std::sqrt(glob[3] / l.area) : 0.0;
   }
   st.diag["volume_" + scene_->fluid] = fluid;
 }

@@ -203,7 +203,7 @@ void LevelSet::registerTasks(Pipeline& p) {
   if (std::any_of(ls_.begin(), ls_.end(), [](const LevelSetInstance& l) { return l.globalCorrection; }))
     p.add(Stage::Corrections, name(), "global volume correction: psi += s so that INT H(psi) = V0 - outflow",
           [this](State& st) { correctVolume(st); }, {"reinit"});
-  p.add(Stage::Diagnostics, name(), "phase volumes, drift, interface area", [this](State& st) { diagnose(st); });
+  p.add(Stage::Diagnostics, name(), "phase volumes, drift, interface area and rms curvature", [this](State& st) { diagnose(st); });
 }
 
 void LevelSet::summary(const State& st, nlohmann::json& j) const {
