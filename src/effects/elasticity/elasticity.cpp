@@ -9,7 +9,7 @@
 //                rotation: cayley | explicit (default cayley): how Eq. (16)'s half
 //                  rotations are applied (kernels/elastic.hpp header),
 //                model: hypoelastic | neo_hookean (default hypoelastic, the paper's),
-//                fluid_side: integrate | extend | blend (default extend): the
+//                fluid_side: integrate | extend | one_cell | blend (default one_cell): the
 //                  stress of the band's fluid side (elasticity.hpp header)}
 #include "effects/elasticity/elasticity.hpp"
 
@@ -73,7 +73,7 @@ void Elasticity::configure(const Scene& s, const Published& pub) {
   // model: the paper's hypoelastic solid (Jaumann rate, Eq. 13) or neo-Hookean, tau = mu_S (B - I)
   // (kernels/elastic.hpp, bensonUpdate; issue 53).
   neoHookean_ = sec.choice("model", "hypoelastic", {"hypoelastic", "neo_hookean"}) == "neo_hookean";
-  side_ = sec.choice("fluid_side", "extend", {"integrate", "extend", "blend"});
+  side_ = sec.choice("fluid_side", "one_cell", {"integrate", "extend", "one_cell", "blend"});
   extend_ = side_ != "integrate";
   const Section is = sec.section("initial_stress");
   const char* keys[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
@@ -129,7 +129,9 @@ void Elasticity::setup(State& st) {
   hmin_ = LevelSetGeometry::hMin(g);
   kappa_ = geo.kappa(g);
   threshold_ = -(kappa_ + bandCells_ * hmin_);
-  below_ = side_ == "blend" ? -kappa_ : 0.0;
+  // Where Eq. (13) stops and the extension starts (elasticity.hpp): blend -kappa, one_cell -h
+  // (the fluid cells next to the interface keep their own stiffness), extend 0.
+  below_ = side_ == "blend" ? -kappa_ : side_ == "one_cell" ? -hmin_ : 0.0;
   // Enough sweeps to cross the blend zone's fluid side (kappa) and one cell
   // more each step; the outer band continues the iteration over steps.
   sweeps_ = 2 * ((int(std::ceil(kappa_ / hmin_ - 1e-9)) + 2 + 1) / 2);
@@ -165,7 +167,10 @@ void Elasticity::registerTasks(Pipeline& p) {
   // After the interface is final for the step (re-initialised, volume-corrected):
   // the extension to psi <= 0 (fluid_side extend/blend) then uses the psi that the
   // next step's blend will see.
-  p.add(Stage::Corrections, name(), "Jaumann rate, Benson half-step with u^{n+1}, Eq. (13)/(16)",
+  const std::string model = neoHookean_ ? "neo-Hookean solid, tau_S = mu_S (B - I): upper-convected rate "
+                                          "(Jaumann + S tau + tau S)"
+                                        : "hypoelastic solid (the paper's): Jaumann rate";
+  p.add(Stage::Corrections, name(), model + ", Benson half-step with u^{n+1}, Eq. (13)/(16); fluid side: " + side_,
         [this](State& st) { update(st); }, {"reinit", "level_set"});
   p.add(Stage::Diagnostics, name(), "S2, elastic energy, stress cells", [this](State& st) { diagnose(st); });
 }

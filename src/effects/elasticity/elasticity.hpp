@@ -1,6 +1,7 @@
 #pragma once
 // The elasticity effect: the paper's hypoelastic solid, Eq. (9)-(16), with
-// NOTES.md errata 1-3. The solid is the level set's phase (psi > 0); its
+// NOTES.md errata 1-3, or (scene key `model: neo_hookean`) a neo-Hookean solid, tau_S =
+// mu_S (B - I) with the upper-convected rate (kernels/elastic_stretch.hpp). The solid is the level set's phase (psi > 0); its
 // deviatoric stress tau_S lives at cell centres (six components) and is
 //   advected with the material, erratum 3 (Advection stage, advect.cpp): the
 //     level set's own scheme, kernels/levelset.hpp addCellAdvection (KT/MUSCL,
@@ -13,28 +14,23 @@
 //     orthogonal Cayley transform of the half-step spin (default, `cayley`:
 //     keeps |tau| under rotation) or explicitly as erratum 2 prints it
 //     (`explicit`: the amplitude grows by 1 + (w dt)^2 per step).
-// Fluid side of the band (scene key `fluid_side`):
-//   integrate (the paper's): Eq. (13) on the whole band, so the fluid
-//     side stores mu_S times the integrated *fluid* shear. Consistent for an
-//     Eulerian Kelvin-Voigt blend (a free elastic oscillation keeps its energy),
-//     but where air is squeezed past a solid (falling block on the cylinder) the
-//     band's air side holds stresses 10-100x the solid's, and numerical transport
-//     and re-initialisation carry them into H > 0: kinetic + elastic energy
-//     reaches 1.4-1.5x the potential energy released (30^3, 45^3).
-//   extend (default since 2026-12-03): Eq. (13) only where psi > 0; after each
-//     update the cells with psi <= 0 take the solid's stress extended along the
-//     normal. The physics: tau_S is the solid's own stress, a function of the
-//     solid's deformation only; the fluid side of the band carries it so that
-//     H tau_S is the solid's stress smeared over the band, never a stress the
-//     fluid's strain rate built. No energy the solid was not given: falling
-//     block 48^3, mu_S 1000, elastic / kinetic energy <= 2e-4 in free fall
-//     (integrate: 0.06) and energy ratio <= 0.99 (integrate: 1.65)
-//     (kernels/extension.hpp). No energy source; dissipative (free oscillation
-//     -14 % in 0.1 s, impact keeps 0.3 of the released energy).
-//   blend: as extend, but Eq. (13) runs on the blend zone (psi > -kappa, Eq. 15
-//     exact there) and only psi <= -kappa is extended. No source; dissipative
-//     (free oscillation -40 %, impact keeps 0.5).
-//   Measurements: cases/falling_block/NOTEBOOK.md "Stress on the fluid side".
+// Fluid side of the band (scene key `fluid_side`); measurements in
+// cases/falling_block/NOTEBOOK.md, "Stress on the fluid side" and "A smooth surface":
+//   integrate (the paper's): Eq. (13) on the whole band, so the fluid side stores mu_S times
+//     the integrated *fluid* shear; where air is squeezed past a solid, transport and
+//     re-initialisation carry it into H > 0: an energy source (falling block 48^3, energy
+//     ratio 1.47).
+//   extend: Eq. (13) only where psi > 0, the cells with psi <= 0 take the solid's stress
+//     extended along the normal (kernels/extension.hpp). No source, but the fluid half of the
+//     blend zone (0 < H < 1/2) then has no stiffness of its own: cell-scale wrinkles grow on
+//     the surface from the impact on (rms curvature +30 %).
+//   one_cell (default since 2026-12-07): Eq. (13) on the solid and on the fluid cells next to
+//     the interface (psi > -h), extension beyond: the zone keeps its stiffness where H
+//     matters (H(-h) = 0.09 at kappa = 2h), the outer cells cannot store the air's shear.
+//     Smooth (+4.5 %), no source (ratio <= 1.00), free fall elastic / kinetic 2e-4;
+//     dissipative (a free oscillation keeps 0.80 of its energy after 0.1 s at 48^3, extend 0.90).
+//   blend: as one_cell to psi > -kappa (Eq. 15 exact on the whole zone): smooth, no source,
+//     but the zone's outer half stores the air's shear (free fall 2.4e-3).
 // Stress kernels run on a packed list of cells with psi > -(kappa + band h):
 // cells far from any solid cost nothing; tau_S is zero outside the band.
 // One file per stage: elasticity.cpp (scene, fields, set-up, dt, summary),
