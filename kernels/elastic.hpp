@@ -343,20 +343,25 @@ inline void zeroOutsideBand(const Grid& g, const Field& psi, double thr, const S
 // Per listed cell: S2 (secondInvariant) and log10 |S2| floored at (1e-6 mu_S)^2 (a strain of
 // 1e-6, so that stress-free cells do not swamp a colour map with -infinity; the paper shades
 // by "the magnitude of the logarithm", and S2 of a deviatoric stress can be negative). Local
-// sums: energy = sum H(psi) tau_S:tau_S / (4 mu_S) dV, maxS2 = max |S2| inside the solid.
+// sums: energy = sum H(psi) w dV with w = tau_S:tau_S / (4 mu_S) (the hypoelastic solid: mu_S
+// gamma^2 / 2 in a simple shear gamma) or, neoHookean, w = tr(tau_S) / 2 = mu_S (tr B - 3) / 2
+// (the neo-Hookean strain energy, exact at any strain for det B = 1); maxS2 = max |S2| inside
+// the solid; maxTension = max over the solid of a bound on tau_S's largest eigenvalue
+// (Gershgorin: t_ii + sum |t_ij|), for the neo-Hookean wave speed (elasticity.cpp dtLimit).
 struct EnergyMaxAcc {
-  double sum, max;
+  double sum, max, tension;
   template <class D, class S>
   KOKKOS_INLINE_FUNCTION static void join(D& d, const S& s) {
     d.sum += s.sum;
     if (s.max > d.max) d.max = s.max;
+    if (s.tension > d.tension) d.tension = s.tension;
   }
-  KOKKOS_INLINE_FUNCTION static void init(EnergyMaxAcc& v) { v.sum = 0, v.max = 0; }
+  KOKKOS_INLINE_FUNCTION static void init(EnergyMaxAcc& v) { v.sum = 0, v.max = 0, v.tension = 0; }
 };
 
 inline void stressDiagnostics(const Grid& g, const SymTensorField& tau, const Field& psi, const Field& S2,
                               const Field& lg, const IntList& cell, int n, double kappa, double mu, double& energy,
-                              double& maxS2) {
+                              double& maxS2, double* maxTension = nullptr, bool neoHookean = false) {
   // One pass, flat addressing (the packed entry is the offset): the sum in list order as
   // before; max |S2| over the solid cells starts at 0 (what an empty list reported).
   const FlatSym t = flatSym(tau);
@@ -376,13 +381,19 @@ inline void stressDiagnostics(const Grid& g, const SymTensorField& tau, const Fi
         flg(p) = km::log10(a > floorS2 ? a : floorS2);
         const double ps = fpsi(p);
         const double H = smoothedHeaviside(ps, kappa);
-        v.sum += H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
+        v.sum += neoHookean ? H * 0.5 * (xx + yy + zz) * dv
+                            : H * (xx * xx + yy * yy + zz * zz + 2 * (xy * xy + yz * yz + zx * zx)) * inv4mu * dv;
         const double m = ps > 0 ? a : 0.0; // inside the solid only
         if (m > v.max) v.max = m;
+        const double ax = km::fabs(xy), ay = km::fabs(yz), az = km::fabs(zx);
+        const double tb = maxOf(xx + ax + az, maxOf(yy + ax + ay, zz + ay + az));
+        const double tm = ps > 0 ? tb : 0.0;
+        if (tm > v.tension) v.tension = tm;
       },
       AccReducer<EnergyMaxAcc>(acc));
   energy = acc.sum;
   maxS2 = acc.max;
+  if (maxTension) *maxTension = acc.tension;
 }
 
 } // namespace elastic

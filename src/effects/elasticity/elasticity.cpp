@@ -175,12 +175,14 @@ void Elasticity::registerTasks(Pipeline& p) {
   p.add(Stage::Diagnostics, name(), "S2, elastic energy, stress cells", [this](State& st) { diagnose(st); });
 }
 
-// Explicit elastic stress: shear-wave speed c = sqrt(mu_S / rho_S), dt <= cfl h_min / c (NUMERICS.md).
-DtLimit Elasticity::dtLimit(const State&) const { return {cfl_ * hmin_ / waveSpeed(), "elastic wave"}; }
+// Explicit elastic stress: shear-wave speed c = sqrt(mu_S / rho_S), dt <= cfl h_min / c (NUMERICS.md);
+// the neo-Hookean solid's from its current stiffness, the last step's largest tension
+// (currentWaveSpeed, elasticity.hpp).
+DtLimit Elasticity::dtLimit(const State&) const { return {cfl_ * hmin_ / currentWaveSpeed(), "elastic wave"}; }
 
 void Elasticity::saveState(nlohmann::json& j) const {
   j = {{"steps", steps_}, {"cells_total", cellsTotal_}, {"cells_last", cellsLast_}, {"energy", energy_},
-       {"max_S2", maxS2_}};
+       {"max_S2", maxS2_}, {"max_tension", maxTension_}};
 }
 
 void Elasticity::loadState(const nlohmann::json& j) {
@@ -189,6 +191,7 @@ void Elasticity::loadState(const nlohmann::json& j) {
   cellsLast_ = j.at("cells_last").get<long long>();
   energy_ = j.at("energy").get<double>();
   maxS2_ = j.at("max_S2").get<double>();
+  maxTension_ = j.value("max_tension", 0.0); // the neo-Hookean dt (checkpoints before 2026-12-07: 0)
 }
 
 // The next Advection stage rebuilds the band from psi and zeroes tau_S in the
@@ -219,7 +222,7 @@ void Elasticity::summary(const State& st, nlohmann::json& j) const {
                      {"stress_cell_steps", cellsTotal_},
                      {"band_fraction_mean", mean / double(st.grid.cellsGlobal())},
                      {"elastic_energy", energy_},
-                     {"max_S2", maxS2_}};
+                     {"max_S2", maxS2_}, {"max_tension", maxTension_}};
 }
 
 } // namespace voigt

@@ -35,6 +35,8 @@
 // cells far from any solid cost nothing; tau_S is zero outside the band.
 // One file per stage: elasticity.cpp (scene, fields, set-up, dt, summary),
 // advect.cpp (band list + transport), update.cpp (stress, Jaumann update, diagnostics).
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/field_names.hpp"
@@ -77,6 +79,11 @@ class Elasticity : public Effect {
   double kelvinVoigtViscosity() const { return etaKV_; }
   elastic::Rotation rotation() const { return rotation_; }
   double waveSpeed() const { return std::sqrt(mu_ / rho_); }
+  // The neo-Hookean solid stiffens in tension: a shear wave along n in a stretched state has
+  // rho c^2 = mu_S (n.B n) = mu_S + n.tau_S n <= mu_S + the largest eigenvalue of tau_S.
+  double currentWaveSpeed() const {
+    return neoHookean_ ? std::sqrt((mu_ + std::max(0.0, maxTension_)) / rho_) : waveSpeed();
+  }
 
   // Stages (public so tests can drive them one at a time).
   void advect(State& st);     // Advection: band list + transport of tau_S
@@ -131,7 +138,7 @@ class Elasticity : public Effect {
   Range3 bandReads_{{0, 0, 0}, {0, 0, 0}};
 
   // Diagnostics and counters for summary.json.
-  double energy_ = 0, maxS2_ = 0;
+  double energy_ = 0, maxS2_ = 0, maxTension_ = 0; // maxTension_: elastic.hpp stressDiagnostics
   long long cellsLast_ = 0;
   double cellsTotal_ = 0; // sum over steps of global stress cells
   long steps_ = 0;
