@@ -9,7 +9,7 @@
 //                rotation: cayley | explicit (default cayley): how Eq. (16)'s half
 //                  rotations are applied (kernels/elastic.hpp header),
 //                model: hypoelastic | neo_hookean (default hypoelastic, the paper's),
-//                fluid_side: integrate | extend | one_cell | blend (default one_cell): the
+//                fluid_side: integrate | extend | one_cell | blend (default extend): the
 //                  stress of the band's fluid side (elasticity.hpp header)}
 #include "effects/elasticity/elasticity.hpp"
 
@@ -73,7 +73,7 @@ void Elasticity::configure(const Scene& s, const Published& pub) {
   // model: the paper's hypoelastic solid (Jaumann rate, Eq. 13) or neo-Hookean, tau = mu_S (B - I)
   // (kernels/elastic.hpp, bensonUpdate; issue 53).
   neoHookean_ = sec.choice("model", "hypoelastic", {"hypoelastic", "neo_hookean"}) == "neo_hookean";
-  side_ = sec.choice("fluid_side", "one_cell", {"integrate", "extend", "one_cell", "blend"});
+  side_ = sec.choice("fluid_side", "extend", {"integrate", "extend", "one_cell", "blend"});
   extend_ = side_ != "integrate";
   const Section is = sec.section("initial_stress");
   const char* keys[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};

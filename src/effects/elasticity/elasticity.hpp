@@ -20,17 +20,19 @@
 //     the integrated *fluid* shear; where air is squeezed past a solid, transport and
 //     re-initialisation carry it into H > 0: an energy source (falling block 48^3, energy
 //     ratio 1.47).
-//   extend: Eq. (13) only where psi > 0, the cells with psi <= 0 take the solid's stress
-//     extended along the normal (kernels/extension.hpp). No source, but the fluid half of the
-//     blend zone (0 < H < 1/2) then has no stiffness of its own: cell-scale wrinkles grow on
-//     the surface from the impact on (rms curvature +30 %).
-//   one_cell (default since 2026-12-07): Eq. (13) on the solid and on the fluid cells next to
-//     the interface (psi > -h), extension beyond: the zone keeps its stiffness where H
-//     matters (H(-h) = 0.09 at kappa = 2h), the outer cells cannot store the air's shear.
-//     Smooth (+4.5 %), no source (ratio <= 1.00), free fall elastic / kinetic 2e-4;
-//     dissipative (a free oscillation keeps 0.80 of its energy after 0.1 s at 48^3, extend 0.90).
-//   blend: as one_cell to psi > -kappa (Eq. 15 exact on the whole zone): smooth, no source,
-//     but the zone's outer half stores the air's shear (free fall 2.4e-3).
+//   extend (default since 2026-12-03): Eq. (13) only where psi > 0, the cells with psi <= 0
+//     take the solid's stress extended along the normal (kernels/extension.hpp). No source, but
+//     the fluid half of the blend zone (0 < H < 1/2) has no stiffness of its own: cell-scale
+//     wrinkles grow on a body's surface from an impact on (falling block: rms curvature +30 %).
+//   one_cell: Eq. (13) on the solid and on the fluid cells next to the interface (psi > -h),
+//     extension beyond: the zone keeps its stiffness where H matters (H(-h) = 0.09 at
+//     kappa = 2h). Smooth (+4.5 %), no source on the falling block (ratio <= 1.00, free fall
+//     elastic / kinetic 2e-4), dissipative (a free oscillation keeps 0.80 of its energy after
+//     0.1 s at 48^3, extend 0.90). Not the default: where bodies pack (the porous bed's throats,
+//     two cells wide) those cells integrate the gas's shear, and the bed holds 40x the elastic
+//     energy it holds with extend (half grid, t = 0.34 s).
+//   blend: as one_cell to psi > -kappa (Eq. 15 exact on the whole zone): smooth, no source on
+//     the block, but the zone's outer half stores the air's shear (free fall 2.4e-3).
 // Stress kernels run on a packed list of cells with psi > -(kappa + band h):
 // cells far from any solid cost nothing; tau_S is zero outside the band.
 // One file per stage: elasticity.cpp (scene, fields, set-up, dt, summary),
