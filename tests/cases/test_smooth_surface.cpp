@@ -33,6 +33,7 @@ TEST(SmoothSurface, FallingBlockThroughTheImpactWithOneCell) {
   Simulation sim(test::repoScene("cases/falling_block/falling_block.yaml",
                                  {"domain.cells=[48,48,48]", "output.enabled=false", "elasticity.fluid_side=one_cell"}),
                  MPI_COMM_WORLD, opt);
+  sim.initialize(); // diagnostics of the initial state
   const double h = 0.1 / 48;
   const double k0 = h * sim.state().diag.at("interface_curvature_rms");
   double kmax = k0, kend = k0;
