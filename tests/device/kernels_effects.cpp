@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/elastic.hpp"
+#include "kernels/elastic_diagnostics.hpp"
 #include "kernels/fast_diag.hpp"
 #include "kernels/fd_tridiagonal.hpp"
 #include "kernels/initial_flow.hpp"
@@ -104,9 +104,8 @@ void effectKernels(const Grid& g, Fields& f) {
   Kokkos::parallel_for(
       "check_mask7", nodes.policy(), KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = (i + 2 * j + k) % 3 ? 7 : 3; });
   put("countFullyFixed", double(countFullyFixed(mask, nodes)));
-  double energy = 0, maxS2 = 0;
-  elastic::stressDiagnostics(g, f.tauS, f.psi, f.psi1, f.q, prev, nPrev, 2 * g.h[0], 100.0, energy, maxS2);
-  put("stressDiagnostics", energy + maxS2 + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
+  const elastic::ElasticDiag ed = elastic::stressDiagnostics(g, f.tauS, f.psi, f.psi1, f.q, prev, nPrev, 2 * g.h[0], 100.0);
+  put("stressDiagnostics", ed.energy + ed.maxS2 + sumAbs(f.psi1, cells) + sumAbs(f.q, cells));
   put("maxKinematicViscosity", maxKinematicViscosity(f.mu, f.rho, cells));
   for (int mode = 1; mode <= 4; ++mode) { // every closed-form initial flow
     InitialFlow init;

@@ -1,8 +1,9 @@
 // Device check, fourth part (see kernels_all.cpp): the semi-implicit viscosity kernels
 // (kernels/viscous_implicit.hpp), one CG iteration on f.u's increment against f.u2, with
 // f.mu and f.rho from fill() and the x- wall plane's nodes prescribed; and the neo-Hookean
-// stress update (kernels/elastic.hpp, elasticity.model: neo_hookean) on a copy of f.tau2.
-#include "kernels/elastic.hpp"
+// stress update (kernels/elastic.hpp, elasticity.model: neo_hookean) on a copy of f.tau2, and
+// its diagnostics (kernels/elastic_diagnostics.hpp).
+#include "kernels/elastic_diagnostics.hpp"
 #include "kernels/viscous_implicit.hpp"
 #include "check.hpp"
 
@@ -47,6 +48,9 @@ void viscous(const Grid& g, Fields& f) {
   elastic::jaumannUpdate(g, f.u, t, 1.0, 1e-2, list, n, runs, nRuns, 0.5, elastic::Rotation::Cayley, Field(),
                          elastic::kAll, true);
   put("jaumannUpdate.neo_hookean", sumAbs(t, cellRange(g)));
+  const Field s2 = mk(g, "nh_S2"), lg = mk(g, "nh_lg"); // its diagnostics: energy, tension, det B
+  const elastic::ElasticDiag d = elastic::stressDiagnostics(g, t, f.psi, s2, lg, list, n, 2 * g.h[0], 1.0, true);
+  put("stressDiagnostics.neo_hookean", d.energy + d.maxS2 + d.tension + d.detDrift + sumAbs(s2, cellRange(g)));
 }
 
 } // namespace check

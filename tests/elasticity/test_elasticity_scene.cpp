@@ -103,10 +103,11 @@ TEST(ElasticityScene, ModuliAndErrors) {
 }
 
 // The neo-Hookean solid's dt limit and energy from its current state (issue 53): a body
-// pre-stressed tau_xx = 3 mu_S (B_xx = 4, a stretch of 2) has rho c^2 = mu_S + 3 mu_S along x,
-// so the elastic limit halves; its energy is INT H tr(tau)/2 (= mu_S (tr B - 3)/2), where the
-// hypoelastic solid's is INT H tau:tau / (4 mu_S), 3/2 times that here. The sphere covers the
-// unit box (H = 1 everywhere), so the energies are 1500 J and 2250 J. `voigt check` names the model.
+// stretched isochorically along x by 2 (B = diag(4, 1/2, 1/2), tau_S = mu_S (B - I) = (3, -1/2,
+// -1/2) mu_S) has rho c^2 = mu_S + 3 mu_S along x, so the elastic limit halves; its energy is
+// INT H mu_S (tr B - 3) / 2 = mu_S per unit volume, where the hypoelastic solid's, INT H tau:tau /
+// (4 mu_S), is 9.5 mu_S / 4. The sphere covers the unit box (H = 1 everywhere): 1000 J and
+// 2375 J. det B = 1, so the drift column reads 0. `voigt check` names the model.
 TEST(ElasticityScene, NeoHookeanDtAndEnergyFromTheCurrentStretch) {
   const std::string base =
       "domain: {cells: [8,8,8]}\nfluid: air\neffects: [navier_stokes, level_set, elasticity]\n"
@@ -115,16 +116,17 @@ TEST(ElasticityScene, NeoHookeanDtAndEnergyFromTheCurrentStretch) {
       "output: {enabled: false}\n";
   double energy[2];
   for (int nh = 0; nh < 2; ++nh) {
-    Simulation sim(test::scene(base + "elasticity: {initial_stress: {xx: 3000}" +
+    Simulation sim(test::scene(base + "elasticity: {initial_stress: {xx: 3000, yy: -500, zz: -500}" +
                                (nh ? ", model: neo_hookean}\n" : "}\n")),
                    MPI_COMM_WORLD, RunOptions{});
     sim.initialize();
     const double c0 = std::sqrt(1000.0 / 100), dt0 = 0.5 * (1.0 / 8) / c0;
     EXPECT_NEAR(sim.stableDt().dt, nh ? dt0 / 2 : dt0, 1e-15) << (nh ? "neo_hookean" : "hypoelastic");
     energy[nh] = sim.state().diag.at("elastic_energy");
+    if (nh) EXPECT_NEAR(sim.state().diag.at("det_B_drift"), 0.0, 1e-14);
     const std::string d = sim.describe();
     EXPECT_NE(d.find(nh ? "neo-Hookean solid" : "hypoelastic solid"), std::string::npos) << d;
   }
-  EXPECT_NEAR(energy[0], 3000.0 * 3000.0 / 4000.0, 1e-9); // tau:tau / (4 mu_S) over the unit box
-  EXPECT_NEAR(energy[1], 3000.0 / 2, 1e-9);                // tr(tau) / 2
+  EXPECT_NEAR(energy[0], 2375.0, 1e-9); // tau:tau / (4 mu_S) over the unit box
+  EXPECT_NEAR(energy[1], 1000.0, 1e-9); // mu_S (tr B - 3) / 2
 }

@@ -182,7 +182,7 @@ DtLimit Elasticity::dtLimit(const State&) const { return {cfl_ * hmin_ / current
 
 void Elasticity::saveState(nlohmann::json& j) const {
   j = {{"steps", steps_}, {"cells_total", cellsTotal_}, {"cells_last", cellsLast_}, {"energy", energy_},
-       {"max_S2", maxS2_}, {"max_tension", maxTension_}};
+       {"max_S2", maxS2_}, {"max_tension", maxTension_}, {"det_B_drift_max", detDrift_}};
 }
 
 void Elasticity::loadState(const nlohmann::json& j) {
@@ -192,6 +192,7 @@ void Elasticity::loadState(const nlohmann::json& j) {
   energy_ = j.at("energy").get<double>();
   maxS2_ = j.at("max_S2").get<double>();
   maxTension_ = j.value("max_tension", 0.0); // the neo-Hookean dt (checkpoints before 2026-12-07: 0)
+  detDrift_ = j.value("det_B_drift_max", 0.0);
 }
 
 // The next Advection stage rebuilds the band from psi and zeroes tau_S in the
@@ -222,7 +223,7 @@ void Elasticity::summary(const State& st, nlohmann::json& j) const {
                      {"stress_cell_steps", cellsTotal_},
                      {"band_fraction_mean", mean / double(st.grid.cellsGlobal())},
                      {"elastic_energy", energy_},
-                     {"max_S2", maxS2_}, {"max_tension", maxTension_}};
+                     {"max_S2", maxS2_}, {"max_tension", maxTension_}, {"det_B_drift_max", detDrift_}};
 }
 
 } // namespace voigt

@@ -140,7 +140,8 @@ class Elasticity : public Effect {
   Range3 bandReads_{{0, 0, 0}, {0, 0, 0}};
 
   // Diagnostics and counters for summary.json.
-  double energy_ = 0, maxS2_ = 0, maxTension_ = 0; // maxTension_: elastic.hpp stressDiagnostics
+  // elastic_diagnostics.hpp; detDrift_: the run's largest |det B - 1| (neo-Hookean)
+  double energy_ = 0, maxS2_ = 0, maxTension_ = 0, detDrift_ = 0;
   long long cellsLast_ = 0;
   double cellsTotal_ = 0; // sum over steps of global stress cells
   long steps_ = 0;

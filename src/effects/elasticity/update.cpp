@@ -20,11 +20,13 @@
 //     the number of cells the kernels touched.
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "effects/elasticity/elasticity.hpp"
 #include "core/field_names.hpp"
 #include "effects/navier_stokes/navier_stokes.hpp"
+#include "kernels/elastic_diagnostics.hpp"
 #include "kernels/extension.hpp"
 
 namespace voigt {
@@ -56,21 +58,23 @@ void Elasticity::diagnose(State& st) {
   const Grid& g = st.grid;
   const SymTensorField t = solidStressField(st.fields);
   Field psi = psiField(st), S2 = st.fields.scalar("S2"), lg = st.fields.scalar("log10_S2");
-  double e = 0, m[2] = {0, 0};
-  elastic::stressDiagnostics(g, t, psi, S2, lg, owned_, nOwned_, kappa_, mu_, e, m[0], &m[1], neoHookean_);
-  double glob[3];
-  MPI_Allreduce(&e, &glob[0], 1, MPI_DOUBLE, MPI_SUM, g.comm);
-  MPI_Allreduce(m, &glob[1], 2, MPI_DOUBLE, MPI_MAX, g.comm);
+  const elastic::ElasticDiag d = elastic::stressDiagnostics(g, t, psi, S2, lg, owned_, nOwned_, kappa_, mu_, neoHookean_);
+  const double m[3] = {d.maxS2, d.tension, d.detDrift};
+  double glob[4];
+  MPI_Allreduce(&d.energy, &glob[0], 1, MPI_DOUBLE, MPI_SUM, g.comm);
+  MPI_Allreduce(m, &glob[1], 3, MPI_DOUBLE, MPI_MAX, g.comm);
   long long n = nOwned_, ng = 0;
   MPI_Allreduce(&n, &ng, 1, MPI_LONG_LONG, MPI_SUM, g.comm);
   energy_ = glob[0];
   maxS2_ = glob[1];
   maxTension_ = glob[2];
+  detDrift_ = std::max(detDrift_, glob[3]);
   cellsLast_ = ng;
   cellsTotal_ += double(ng);
   ++steps_;
   st.diag["elastic_energy"] = energy_;
   st.diag["max_S2"] = maxS2_;
+  if (neoHookean_) st.diag["det_B_drift"] = glob[3]; // max |det B - 1| over the solid
   st.diag["stress_cells"] = double(ng);
 }
 
