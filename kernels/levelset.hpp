@@ -126,8 +126,9 @@ struct PhaseMeasures {
 };
 
 // Local (this rank's owned cells) sums; the caller reduces over ranks.
-// Needs psi on one ghost layer (edges too) for the central gradient and the curvature. box: only there (core/index_space.hpp,
-// within: several level sets; psi <= -kappa outside it adds nothing).
+// Needs psi on one ghost layer (edges too) for the central gradient and the curvature. box:
+// only there (core/index_space.hpp, within: several level sets; psi <= -kappa outside it adds
+// nothing).
 inline PhaseMeasures localPhaseMeasures(const Grid& g, const Field& psi, double kappa, const Range3* box = nullptr) {
   const double dv = g.cellVolume();
   const double i0 = 0.5 / g.h[0], i1 = 0.5 / g.h[1], i2 = 0.5 / g.h[2];

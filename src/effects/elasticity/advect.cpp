@@ -74,7 +74,7 @@ void Elasticity::advect(State& st) {
   refreshBand(st); // the Stress stage reads one ghost layer (bandReads_)
 }
 
-// tau_S where psi <= below_ (extend: 0, blend: -kappa) = the stress above it,
+// tau_S where psi <= below_ (extend: 0, one_cell: -h, blend: -kappa) = the stress above it,
 // extended along the normal (kernels/extension.hpp), after the Jaumann update, so that the next
 // transport carries a field that is smooth across psi = 0 (a uniform solid
 // stress stays uniform). Jacobi sweeps between tau_S and the RK buffer (free

@@ -165,7 +165,7 @@ void Elasticity::registerTasks(Pipeline& p) {
         [this](State& st) { advect(st); });
   p.add(Stage::Stress, name(), "tau += H(psi) tau_S, Eq. (9)/(14)", [this](State& st) { addStress(st); });
   // After the interface is final for the step (re-initialised, volume-corrected):
-  // the extension to psi <= 0 (fluid_side extend/blend) then uses the psi that the
+  // the extension to psi <= below_ (fluid_side extend/one_cell/blend) uses the psi that the
   // next step's blend will see.
   const std::string model = neoHookean_ ? "neo-Hookean solid, tau_S = mu_S (B - I): upper-convected rate "
                                           "(Jaumann + S tau + tau S)"

@@ -1,8 +1,8 @@
 #pragma once
 // The elasticity effect: the paper's hypoelastic solid, Eq. (9)-(16), with
 // NOTES.md errata 1-3, or (scene key `model: neo_hookean`) a neo-Hookean solid, tau_S =
-// mu_S (B - I) with the upper-convected rate (kernels/elastic_stretch.hpp). The solid is the level set's phase (psi > 0); its
-// deviatoric stress tau_S lives at cell centres (six components) and is
+// mu_S (B - I) with the upper-convected rate (kernels/elastic_stretch.hpp). The solid is the
+// level set's phase (psi > 0); its deviatoric stress tau_S lives at cell centres (six components) and is
 //   advected with the material, erratum 3 (Advection stage, advect.cpp): the
 //     level set's own scheme, kernels/levelset.hpp addCellAdvection (KT/MUSCL,
 //     scene limiter), SSP-RK2, velocity frozen at u^n;

@@ -39,7 +39,7 @@ void Elasticity::addStress(State& st) {
 void Elasticity::update(State& st, double spinScale) {
   VecField u = st.fields.vector(field::velocity);
   exchangeVelocity(st); // the corners of the owned cells
-  // fluid_side extend / blend: Eq. (13) only where psi > below_ (0 / -kappa),
+  // fluid_side extend / one_cell / blend: Eq. (13) only where psi > below_ (0 / -h / -kappa),
   // then the cells below take the stress extended from above (elasticity.hpp).
   // The band's cells above below_ listed first (not masked in the kernel: the cells
   // below would cost as much as the rest, for nothing), in runs that vectorise.
