@@ -121,6 +121,31 @@ inline void subtractGradient(const Grid& g, const Field& p, const VecField& coef
       });
 }
 
+// projection.variable_density: split (Dodd & Ferrante 2014). coef0 = b0 where the component
+// is free (coef != 0), else 0: B0, the one-density operator's coefficients.
+inline void splitCoefficients(const VecField& coef, double b0, const VecField& coef0, Range3 nodes) {
+  for_each3("projection_coef_split", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+        VOIGT_UNROLL
+        for (int d = 0; d < 3; ++d) coef0.c[d](i, j, k) = coef.c[d](i, j, k) != 0 ? b0 : 0.0;
+      });
+}
+
+// u -= scale (B - B0) G p: the part of the pressure gradient the split takes from the
+// extrapolated increment.
+inline void subtractSplitGradient(const Grid& g, const Field& p, const VecField& coef, double b0, double scale,
+                                  const VecField& u, Range3 nodes) {
+  GridGeom G(g);
+  for_each3("subtract_split_gradient", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
+        double gr[3];
+        nodeGradient(G, p, i, j, k, gr);
+        VOIGT_UNROLL
+        for (int d = 0; d < 3; ++d) {
+          const double c = coef.c[d](i, j, k);
+          u.c[d](i, j, k) -= scale * (c != 0 ? c - b0 : 0.0) * gr[d];
+        }
+      });
+}
+
 // coef_d(n) = 0 where component d is prescribed (mask bit d), else 1/rho_n (the mean
 // of the existing cells around the node): B of the projection, 1/rho of Eq. (7).
 inline void projectionCoefficients(const Grid& g, const Field& rho, const IntField& mask, const VecField& coef,

@@ -256,14 +256,10 @@ void readSettings(const Section& top, Scene& sc) {
   P.maxIterations = int(p.integer("max_iterations", P.maxIterations, 1, 100000));
   P.preconditioner = p.choice("preconditioner", P.preconditioner, {"sgs", "jacobi", "none", "multigrid", "fast_diagonalization"});
   if (!p.has("preconditioner")) {
-    // Exact operator: fast diagonalization, the operator's own inverse at one density (one
-    // CG iteration there), and the only preconditioner measured to converge on both paper
-    // scenes: falling block 75^3 75-83 iterations (multigrid 595-631), porous bed 51-55
-    // (multigrid: the 1000 cap), Taylor-Green 32x32x4 14x faster than SGS (perf/README.md,
-    // "Fast diagonalization"). Approximate operator (fast diagonalization needs the exact
-    // one): multigrid from 32^3 cells or two densities, else SGS, measured with the exact
-    // operator before it had fast diagonalization (on small single-phase scenes the
-    // multigrid set-up costs more than it saves: Taylor-Green 0.030 against 0.028 s a step).
+    // Exact operator: fast diagonalization, its own inverse at one density and the only
+    // preconditioner measured to converge on both paper scenes. Approximate operator:
+    // multigrid from 32^3 cells or two densities, else SGS (its set-up costs more than it
+    // saves on small single-phase scenes). Measurements: perf/README.md, "Fast diagonalization".
     if (P.op == ProjectionCfg::Op::Exact) P.preconditioner = "fast_diagonalization";
     else P.preconditioner = (cells >= 32 * 32 * 32 || twoPhase) ? "multigrid" : "sgs";
     P.preconditionerAuto = true;
@@ -287,6 +283,10 @@ void readSettings(const Section& top, Scene& sc) {
   // grew tenfold every ~80 steps at the gravity dt (16^3) (README, "Gravity and rest").
   P.hydrostatic = p.choice("hydrostatic", exact ? "balanced" : "none", {"balanced", "none"});
   P.volumeTolerance = p.number("volume_tolerance", P.volumeTolerance, {0, 1, false, true}); // 0: off
+  P.variableDensity = p.choice("variable_density", P.variableDensity, {"solve", "split"});
+  if (P.variableDensity == "split" && std::count(sc.effects.begin(), sc.effects.end(), "elasticity"))
+    p.fail("variable_density", "split is for fluids: with elasticity the lagged pressure gradient is unstable "
+                               "at the elastic time step (use solve)"); // perf/README.md, "The one-density split"
   p.finish();
 
   Section a = top.section("advection");

@@ -2,8 +2,10 @@
 // (kernels/viscous_implicit.hpp), one CG iteration on f.u's increment against f.u2, with
 // f.mu and f.rho from fill() and the x- wall plane's nodes prescribed; and the neo-Hookean
 // stress update (kernels/elastic.hpp, elasticity.model: neo_hookean) on a copy of f.tau2, and
-// its diagnostics (kernels/elastic_diagnostics.hpp).
+// its diagnostics (kernels/elastic_diagnostics.hpp); the split projection's two kernels
+// (kernels/projection_ops.hpp, projection.variable_density: split) on f.coef and f.p.
 #include "kernels/elastic_diagnostics.hpp"
+#include "kernels/projection_ops.hpp"
 #include "kernels/viscous_implicit.hpp"
 #include "check.hpp"
 
@@ -51,6 +53,13 @@ void viscous(const Grid& g, Fields& f) {
   const Field s2 = mk(g, "nh_S2"), lg = mk(g, "nh_lg"); // its diagnostics: energy, tension, det B
   const elastic::ElasticDiag d = elastic::stressDiagnostics(g, t, f.psi, s2, lg, list, n, 2 * g.h[0], 1.0, true);
   put("stressDiagnostics.neo_hookean", d.energy + d.maxS2 + d.tension + d.detDrift + sumAbs(s2, cellRange(g)));
+  // projection.variable_density: split. b0 above every coefficient (B - B0 <= 0).
+  const VecField c0 = vec("split_coef0"), us = vec("split_u");
+  splitCoefficients(f.coef, 3.0, c0, nodeRange(g));
+  put("splitCoefficients", sumAbs(c0, nodeRange(g)));
+  for (int d2 = 0; d2 < 3; ++d2) Kokkos::deep_copy(us.c[d2], f.u.c[d2]);
+  subtractSplitGradient(g, f.p, f.coef, 3.0, 1e-2, us, nodeRange(g));
+  put("subtractSplitGradient", sumAbs(us, nodeRange(g)));
 }
 
 } // namespace check

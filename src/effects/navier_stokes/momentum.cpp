@@ -102,6 +102,7 @@ void NavierStokes::initialPressure(State& st, Pipeline& p) {
   addTo(dp, pr, cells);
   Kokkos::deep_copy(dp, 0.0);
   st.halo->exchange(pr);
+  if (split_) solver_->setCoefficients(st.fields.vector("proj_coef0")); // the steps solve with B0
   st.counters["initial_pressure_iterations"] = s.iterations;
 }
 

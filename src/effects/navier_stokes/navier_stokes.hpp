@@ -59,6 +59,11 @@ class NavierStokes : public Effect {
   double pRef_ = 0; // outflow pressure: stored p is relative to it
   bool initialPressureDone_ = false;
   int rateHistory_ = 0; // pressure rates stored (0-2), for initial_guess: extrapolate
+  // projection.variable_density: split (projection.cpp): B0 = 1/rho_min (refreshCoefficients)
+  // and the scene's rho_min / rho_max (its dt limit).
+  bool split_ = false;
+  double b0_ = 0, splitRatio_ = 1;
+  void splitPredictor(State& st, const Field& rate, const Field& dp);
 };
 
 SymTensorField stressField(const FieldStore& f);

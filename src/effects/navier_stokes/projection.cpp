@@ -1,6 +1,8 @@
 // Incremental pressure correction (paper, "Numerical methodology"):
 //   D B G dp = D u* / dt,  B = diag(1/rho) on free velocity components,
 //   u^{n+1} = u* - dt B G dp,   p^{n+1} = p^n + dp.
+// projection.variable_density: split (Dodd & Ferrante 2014), B0 = 1/rho_min, dp_hat = dt r^n:
+//   u~ = u* - dt (B - B0) G dp_hat,   D B0 G dp = D u~ / dt,   u^{n+1} = u~ - dt B0 G dp.
 // Exact operator: A = D B W^{-1} D^T (27-point), so D u^{n+1} equals dt times
 // the solver residual; approximate: the compact 7-point Laplacian (NUMERICS.md).
 #include <mpi.h>
@@ -29,7 +31,18 @@ void NavierStokes::refreshCoefficients(State& st) {
   fillCellGhostsEven(g, rho);
   projectionCoefficients(g, rho, mask, coef, nodeRange(g));
   st.halo->exchange(coef);
-  solver_->setCoefficients(coef);
+  if (split_) {
+    // B0 = 1/rho_min over the free components (B - B0 <= 0, as Dodd & Ferrante require). The
+    // initial pressure is solved with B itself (initialPressure), every step with B0.
+    const Range3 nodes = nodeRange(g);
+    b0_ = std::max({globalMaxAbs(g, coef.c[0], nodes), globalMaxAbs(g, coef.c[1], nodes),
+                    globalMaxAbs(g, coef.c[2], nodes)});
+    VecField coef0 = st.fields.vector("proj_coef0");
+    splitCoefficients(coef, b0_, coef0, Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}});
+    solver_->setCoefficients(initialPressureDone_ ? coef0 : coef);
+  } else {
+    solver_->setCoefficients(coef);
+  }
   st.propertiesChanged = false;
 }
 
@@ -48,6 +61,29 @@ void NavierStokes::reportCap(State& st, const PoissonStats& s) {
   if (st.grid.rank == 0 && n <= 10)
     std::cerr << (isatty(2) ? "\n" : "") << "warning: " << os.str() << (n == 10 ? "; further capped solves are counted, not printed" : "")
               << "\n";
+}
+
+// The split's u~ = u* - dt (B - B0) G dp_hat and the right-hand side from it. dp_hat = dt times
+// the last pressure rate (rate: initial_guess extrapolate), or the last increment.
+void NavierStokes::splitPredictor(State& st, const Field& rate, const Field& dp) {
+  const Grid& g = st.grid;
+  const Range3 cells = cellRange(g);
+  VecField u = st.fields.vector(field::velocity), coef = st.fields.vector("proj_coef");
+  Field dph = st.fields.scalar("pressure_increment_hat");
+  Field rhs = st.fields.scalar("poisson_rhs"), div = st.fields.scalar("divergence");
+  if (rate.size() > 0) {
+    if (rateHistory_ > 0) extrapolateIncrement(rate, rate, dph, st.dt, false, cells); // dt r^n
+    else Kokkos::deep_copy(dph, 0.0);
+  } else {
+    Kokkos::deep_copy(dph, dp);
+  }
+  st.halo->exchange(dph);
+  subtractSplitGradient(g, dph, coef, b0_, st.dt, u, nodeRange(g));
+  st.velocityHalosCurrent = false;
+  exchangeVelocity(st);
+  fillVelocityGhosts(g, *st.scene, u);
+  divergence(g, u, div, cells);
+  poissonRhs(div, rhs, st.dt, cells);
 }
 
 void NavierStokes::project(State& st) {
@@ -71,6 +107,7 @@ void NavierStokes::project(State& st) {
     f2 = st.fields.scalar("pressure_rate_old");
     if (rateHistory_ > 0) extrapolateIncrement(f1, f2, dp, dt, rateHistory_ > 1, cells);
   }
+  if (split_) splitPredictor(st, extrapolate ? f1 : Field(), dp);
   const PoissonStats s = solver_->solve(rhs, dp, scene_->projection.volumeTolerance / (dt * dt));
   if (extrapolate) {
     shiftPressureRates(f1, f2, dp, dt, cells);
@@ -78,7 +115,7 @@ void NavierStokes::project(State& st) {
   }
   addTo(dp, p, cells);
   st.halo->exchange(std::vector<Field>{dp, p}); // one exchange for both: subtractGradient reads dp's ghosts
-  subtractGradient(g, dp, coef, dt, u, nodeRange(g));
+  subtractGradient(g, dp, split_ ? st.fields.vector("proj_coef0") : coef, dt, u, nodeRange(g));
   st.velocityHalosCurrent = false;
   exchangeVelocity(st);
   fillVelocityGhosts(g, *st.scene, u);

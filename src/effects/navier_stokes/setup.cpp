@@ -34,6 +34,13 @@ void NavierStokes::configure(const Scene& s, const Published& pub) {
   // limit on dt goes, kernels/viscous_implicit.hpp).
   const Section ns = topSection(s, "navier_stokes");
   semiImplicit_ = ns.choice("viscous", "explicit", {"explicit", "semi_implicit"}) == "semi_implicit";
+  split_ = s.projection.variableDensity == "split";
+  if (split_) { // the split's stability limit (dtLimit) from the scene's densities and gravity
+    double lo = s.fluidMaterial().density, hi = lo;
+    for (const auto& [name, m] : s.materials)
+      if (m.density > 0) lo = std::min(lo, m.density), hi = std::max(hi, m.density);
+    splitRatio_ = lo / hi;
+  }
   ns.finish();
   bool haveOutflow = false;
   VOIGT_UNROLL
@@ -73,6 +80,10 @@ void NavierStokes::declareFields(FieldStore& f) const {
       f.declare(n, Centring::Cell, 1, me);
       f.markOptionalOnRestart(n); // checkpoints from before them: rateHistory_ 0, rebuilt in two steps
     }
+  if (split_) {
+    f.declareDerived("proj_coef0", Centring::Node, 3, me);
+    f.declareDerived("pressure_increment_hat", Centring::Cell, 1, me);
+  }
   for (const char* n : {"poisson_rhs", "divergence", field::density, field::viscosity})
     f.declareDerived(n, Centring::Cell, 1, me);
   if (semiImplicit_) ImplicitViscosity::declareFields(f, me);
@@ -177,7 +188,8 @@ std::string solverSummary(const ProjectionCfg& P) {
                                                                    : " [default]";
   return s + ", tolerance " + tol + tolWhy + ", at most " + std::to_string(P.maxIterations) + " iterations (then " +
          (P.onCap == "stop" ? "stop the run" : "warn and go on") + "), initial guess " + P.initialGuess +
-         (P.initialGuessAuto ? " [default with this preconditioner]" : "");
+         (P.initialGuessAuto ? " [default with this preconditioner]" : "") +
+         (P.variableDensity == "split" ? "; variable density split (one-density solve, Dodd & Ferrante 2014)" : "");
 }
 
 DtLimit NavierStokes::dtLimit(const State& st) const {
@@ -208,6 +220,18 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
     s = std::max(s, 2 / (hmin * hmin));
     const double dv = scene_->time.viscousSafety / (2 * nuG * s);
     if (dv < best.dt) best = {dv, "viscous"};
+  }
+  // projection.variable_density: split. The lagged (B - B0) G dp_hat destabilises gravity
+  // waves above dt_c = K sqrt(rho_min / rho_max) sqrt(h / (pi |g|)): a water column at rest grew
+  // exponentially from round-off above K = 2.1-2.4 (16^3 and 32^3 at ratio 1000, 32^3 at 100)
+  // and drifted only linearly below (perf/README.md, "The one-density split"). Taken with the
+  // scene's cfl (0.5: half the measured threshold).
+  const double gn = std::sqrt(scene_->gravity[0] * scene_->gravity[0] + scene_->gravity[1] * scene_->gravity[1] +
+                              scene_->gravity[2] * scene_->gravity[2]);
+  if (split_ && gn > 0 && splitRatio_ < 1) {
+    const double hmin = std::min({g.h[0], g.h[1], g.h[2]});
+    const double ds = scene_->time.cfl * 2 * std::sqrt(splitRatio_) * std::sqrt(hmin / (M_PI * gn));
+    if (ds < best.dt) best = {ds, "split (gravity waves)"};
   }
   return best;
 }
