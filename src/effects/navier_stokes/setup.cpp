@@ -223,8 +223,8 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
   }
   // projection.variable_density: split. The lagged (B - B0) G dp_hat destabilises gravity
   // waves above dt_c = K sqrt(rho_min / rho_max) sqrt(h / (pi |g|)): a water column at rest grew
-  // exponentially from round-off above K = 2.1-2.4 (16^3 and 32^3 at ratio 1000, 32^3 at 100)
-  // and drifted only linearly below (perf/README.md, "The one-density split"). Taken with the
+  // exponentially from round-off above K ~ 2-2.5 (16^3 and 32^3 at ratio 1000, 32^3 at 100)
+  // and drifted only linearly below (perf/README.md, "The one-density split"). K = 2 times the
   // scene's cfl (0.5: half the measured threshold).
   const double gn = std::sqrt(scene_->gravity[0] * scene_->gravity[0] + scene_->gravity[1] * scene_->gravity[1] +
                               scene_->gravity[2] * scene_->gravity[2]);
