@@ -59,10 +59,10 @@ class NavierStokes : public Effect {
   double pRef_ = 0; // outflow pressure: stored p is relative to it
   bool initialPressureDone_ = false;
   int rateHistory_ = 0; // pressure rates stored (0-2), for initial_guess: extrapolate
-  // projection.variable_density: split (projection.cpp): B0 = 1/rho_min (refreshCoefficients)
-  // and the scene's rho_min / rho_max (its dt limit).
+  // projection.variable_density: split (projection.cpp): B0 = 1/rho_min of the materials, and
+  // its gravity-wave dt limit over sqrt(h) (0: none); both from the scene (configure).
   bool split_ = false;
-  double b0_ = 0, splitRatio_ = 1;
+  double b0_ = 0, splitWaveTime_ = 0;
   void splitPredictor(State& st, const Field& rate, const Field& dp);
 };
 

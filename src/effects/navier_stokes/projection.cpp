@@ -32,11 +32,9 @@ void NavierStokes::refreshCoefficients(State& st) {
   projectionCoefficients(g, rho, mask, coef, nodeRange(g));
   st.halo->exchange(coef);
   if (split_) {
-    // B0 = 1/rho_min over the free components (B - B0 <= 0, as Dodd & Ferrante require). The
-    // initial pressure is solved with B itself (initialPressure), every step with B0.
-    const Range3 nodes = nodeRange(g);
-    b0_ = std::max({globalMaxAbs(g, coef.c[0], nodes), globalMaxAbs(g, coef.c[1], nodes),
-                    globalMaxAbs(g, coef.c[2], nodes)});
+    // B0 = 1/rho_min of the scene's materials on the free components (B - B0 <= 0, as Dodd &
+    // Ferrante require). The initial pressure is solved with B itself (initialPressure), every
+    // step with B0.
     VecField coef0 = st.fields.vector("proj_coef0");
     splitCoefficients(coef, b0_, coef0, Range3{{0, 0, 0}, {g.ext[0], g.ext[1], g.ext[2]}});
     solver_->setCoefficients(initialPressureDone_ ? coef0 : coef);

@@ -35,11 +35,13 @@ void NavierStokes::configure(const Scene& s, const Published& pub) {
   const Section ns = topSection(s, "navier_stokes");
   semiImplicit_ = ns.choice("viscous", "explicit", {"explicit", "semi_implicit"}) == "semi_implicit";
   split_ = s.projection.variableDensity == "split";
-  if (split_) { // the split's stability limit (dtLimit) from the scene's densities and gravity
+  if (split_) { // B0 = 1/rho_min, and the split's gravity-wave limit (dtLimit), from the scene
     double lo = s.fluidMaterial().density, hi = lo;
     for (const auto& [name, m] : s.materials)
       if (m.density > 0) lo = std::min(lo, m.density), hi = std::max(hi, m.density);
-    splitRatio_ = lo / hi;
+    b0_ = 1 / lo;
+    const double gn = std::sqrt(s.gravity[0] * s.gravity[0] + s.gravity[1] * s.gravity[1] + s.gravity[2] * s.gravity[2]);
+    if (gn > 0 && lo < hi) splitWaveTime_ = s.time.cfl * 2 * std::sqrt(lo / hi) / std::sqrt(M_PI * gn);
   }
   ns.finish();
   bool haveOutflow = false;
@@ -225,12 +227,9 @@ DtLimit NavierStokes::dtLimit(const State& st) const {
   // waves above dt_c = K sqrt(rho_min / rho_max) sqrt(h / (pi |g|)): a water column at rest grew
   // exponentially from round-off above K ~ 2-2.5 (16^3 and 32^3 at ratio 1000, 32^3 at 100)
   // and drifted only linearly below (perf/README.md, "The one-density split"). K = 2 times the
-  // scene's cfl (0.5: half the measured threshold).
-  const double gn = std::sqrt(scene_->gravity[0] * scene_->gravity[0] + scene_->gravity[1] * scene_->gravity[1] +
-                              scene_->gravity[2] * scene_->gravity[2]);
-  if (split_ && gn > 0 && splitRatio_ < 1) {
-    const double hmin = std::min({g.h[0], g.h[1], g.h[2]});
-    const double ds = scene_->time.cfl * 2 * std::sqrt(splitRatio_) * std::sqrt(hmin / (M_PI * gn));
+  // scene's cfl (0.5: half the measured threshold); splitWaveTime_ is dt_c / sqrt(h) (configure).
+  if (splitWaveTime_ > 0) {
+    const double ds = splitWaveTime_ * std::sqrt(std::min({g.h[0], g.h[1], g.h[2]}));
     if (ds < best.dt) best = {ds, "split (gravity waves)"};
   }
   return best;
