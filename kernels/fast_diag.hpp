@@ -183,12 +183,12 @@ inline void fdConvertDense(const Dense& src, const DenseOf<T>& dst) {
 }
 
 // inv(a,b,c) = 1 / sum_d lambda_d/h_d^2 prod_{e != d} (1 - lambda_e/4) for the modes
-// a, b + off1, c (a y-slab of them), 0 where that sum is <= cut (A0's null modes).
+// a + off0, b + off1, c (a z pencil of them), 0 where that sum is <= cut (A0's null modes).
 inline void fdInverseEigenvalues(const Grid3& inv, const Kokkos::View<double* [3], MemSpace>& lam, double ih0,
-                                 double ih1, double ih2, int off1, double cut) {
+                                 double ih1, double ih2, int off1, double cut, int off0 = 0) {
   const Range3 all{{0, 0, 0}, {(int)inv.extent(0), (int)inv.extent(1), (int)inv.extent(2)}};
   for_each3("fd_eigen", all, KOKKOS_LAMBDA(int a, int b, int c) {
-    const double l0 = lam(a, 0), l1 = lam(b + off1, 1), l2 = lam(c, 2);
+    const double l0 = lam(a + off0, 0), l1 = lam(b + off1, 1), l2 = lam(c, 2);
     const double m0 = 1 - 0.25 * l0, m1 = 1 - 0.25 * l1, m2 = 1 - 0.25 * l2;
     const double d = ih0 * l0 * m1 * m2 + ih1 * m0 * l1 * m2 + ih2 * m0 * m1 * l2;
     inv(a, b, c) = d > cut ? 1.0 / d : 0.0;

@@ -33,14 +33,14 @@ KOKKOS_INLINE_FUNCTION int lin(int i, int o, int q, int n0, int n1) { // (i, o, 
 } // namespace fd_detail
 
 // out = T^-1 in on every line along Axis (1: lines (i, k) along y; 2: lines (i, j) along z) of a
-// slab (extents n0, n1, n2, i fastest); the other transformed axis' mode of slab index o is
-// o + off. In double whatever T (mixed precision: the solve is where round-off would grow,
+// pencil (extents n0, n1, n2, i fastest); the other transformed axis' mode of index o is
+// o + off, x's of index i is i + offA. In double whatever T (mixed precision: the solve is where round-off would grow,
 // by up to cond(T) ~ n^2). cp, dp: double work arrays of the slab's extents. A singular
 // line's output is not used (fdDenseLines overwrites it); its zero pivots are replaced by 1.
 template <int Axis, class T>
 inline void fdTridiagonal(const CGrid3In<T>& in, const Grid3Of<T>& out, const Grid3& cp, const Grid3& dp,
                           const Table4& tri, const Table& lamA, const Table& lamC, double iha, double ihc, double ihs,
-                          int off) {
+                          int off, int offA = 0) {
   static_assert(Axis == 1 || Axis == 2, "the solve axis is y or z (lines vectorise along x)");
   const int n0 = (int)in.extent(0), n1 = (int)in.extent(1), n2 = (int)in.extent(2);
   const int m = Axis == 1 ? n1 : n2, nOther = Axis == 1 ? n2 : n1;
@@ -59,7 +59,7 @@ inline void fdTridiagonal(const CGrid3In<T>& in, const Grid3Of<T>& out, const Gr
 #pragma GCC ivdep
           for (int i = 0; i < n0; ++i) {
             double sigma, tau;
-            fd_detail::lineCoef(lamA(i), lc, iha, ihc, ihs, sigma, tau);
+            fd_detail::lineCoef(lamA(i + offA), lc, iha, ihc, ihs, sigma, tau);
             double den = sigma * tri(0, 2) + tau * tri(0, 0);
             den = den != 0.0 ? den : 1.0;
             const double inv = 1.0 / den;
@@ -74,7 +74,7 @@ inline void fdTridiagonal(const CGrid3In<T>& in, const Grid3Of<T>& out, const Gr
 #pragma GCC ivdep
             for (int i = 0; i < n0; ++i) {
               double sigma, tau;
-              fd_detail::lineCoef(lamA(i), lc, iha, ihc, ihs, sigma, tau);
+              fd_detail::lineCoef(lamA(i + offA), lc, iha, ihc, ihs, sigma, tau);
               const double lo = sigma * ml + tau * kl;
               double den = sigma * md + tau * kd - lo * c[prev + i];
               den = den != 0.0 ? den : 1.0;
@@ -104,7 +104,7 @@ inline void fdTridiagonal(const CGrid3In<T>& in, const Grid3Of<T>& out, const Gr
       "fd_tridiagonal_line", Kokkos::RangePolicy<ExecSpace>(0, n0 * nOther), KOKKOS_LAMBDA(int l) {
         const int i = l % n0, o = l / n0;
         double sigma, tau;
-        fd_detail::lineCoef(lamA(i), lamC(o + off), iha, ihc, ihs, sigma, tau);
+        fd_detail::lineCoef(lamA(i + offA), lamC(o + off), iha, ihc, ihs, sigma, tau);
         for (int q = 0; q < m; ++q) {
           const int at = fd_detail::lin<Axis>(i, o, q, n0, n1);
           const double lo = q > 0 ? sigma * tri(q - 1, 3) + tau * tri(q - 1, 1) : 0.0;
@@ -133,7 +133,7 @@ template <int Axis, class T>
 inline void fdDenseLines(const CGrid3In<T>& in, const Grid3Of<T>& out, const Lines2& lines, const Dense& V,
                          const Dense& VT, const Table& lamS, const Table& lamA, const Table& lamC, double iha,
                          double ihc, double ihs, int off, double cut,
-                         const Kokkos::View<double**, Kokkos::LayoutRight, MemSpace>& work) {
+                         const Kokkos::View<double**, Kokkos::LayoutRight, MemSpace>& work, int offA = 0) {
   const int n0 = (int)in.extent(0), n1 = (int)in.extent(1);
   const int m = Axis == 1 ? (int)in.extent(1) : (int)in.extent(2);
   const T* src = in.data();
@@ -142,7 +142,7 @@ inline void fdDenseLines(const CGrid3In<T>& in, const Grid3Of<T>& out, const Lin
       "fd_dense_lines", Kokkos::RangePolicy<ExecSpace>(0, (int)lines.extent(0)), KOKKOS_LAMBDA(int l) {
         const int i = lines(l, 0), o = lines(l, 1);
         double sigma, tau;
-        fd_detail::lineCoef(lamA(i), lamC(o + off), iha, ihc, ihs, sigma, tau);
+        fd_detail::lineCoef(lamA(i + offA), lamC(o + off), iha, ihc, ihs, sigma, tau);
         double* w = &work(l, 0);
         double* t = w + m;
         double* y = t + m;

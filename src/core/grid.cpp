@@ -64,6 +64,7 @@ Grid makeGrid(MPI_Comm world, std::array<int, 3> cells, std::array<double, 3> lo
   MPI_Cart_create(world, 3, req, per, 0, &g.comm);
   MPI_Comm_rank(g.comm, &g.rank);
   MPI_Comm_size(g.comm, &g.size);
+  MPI_Comm_split(g.comm, 0, g.rank, &g.io);
   int crd[3];
   MPI_Cart_coords(g.comm, g.rank, 3, crd);
   for (int d = 0; d < 3; ++d) {
@@ -86,7 +87,8 @@ Grid makeGrid(MPI_Comm world, std::array<int, 3> cells, std::array<double, 3> lo
 
 void freeGrid(Grid& g) {
   if (g.comm != MPI_COMM_NULL) MPI_Comm_free(&g.comm);
-  g.comm = MPI_COMM_NULL;
+  if (g.io != MPI_COMM_NULL) MPI_Comm_free(&g.io);
+  g.comm = g.io = MPI_COMM_NULL;
 }
 
 } // namespace voigt

@@ -23,6 +23,10 @@ struct Grid {
 
   // Decomposition.
   MPI_Comm comm = MPI_COMM_NULL;   // Cartesian communicator
+  // The same ranks in the same order without the topology, for parallel HDF5: Open MPI's
+  // default MPI-IO (OMPIO, 4.1) corrupts collective writes over a Cartesian communicator
+  // (open-mpi/ompi#12718; seen here at 8 ranks: another rank's data in a dataset).
+  MPI_Comm io = MPI_COMM_NULL;
   int rank = 0, size = 1;
   std::array<int, 3> dims{1, 1, 1}, coords{};
   std::array<int, 3> nbrLo{}, nbrHi{}; // MPI_PROC_NULL at physical faces

@@ -69,6 +69,16 @@ Redistribute::Redistribute(MPI_Comm comm, const std::vector<Box>& src, const std
   recvBuf_.resize(std::max<size_t>(1, recvDispl_.back() + recvCount_.back()));
 }
 
+std::array<long long, 2> Redistribute::sent(bool reverse) const {
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  const auto& c = reverse ? recvCount_ : sendCount_;
+  std::array<long long, 2> t{0, 0};
+  for (size_t p = 0; p < c.size(); ++p)
+    if ((int)p != rank && c[p] > 0) ++t[0], t[1] += c[p];
+  return t;
+}
+
 template <class T>
 void Redistribute::move(const T* in, T* out, bool reverse) const {
   // Reverse: the roles of the send and receive lists swap (same counts, same buffers).

@@ -27,6 +27,9 @@ class Redistribute {
   // The reverse move: in (dst layout) -> out (src layout).
   template <class T>
   void backward(const T* in, T* out) const { move(in, out, true); }
+  // What one move (reverse: the backward one) sends from this rank to others: messages and
+  // cells (the part kept by the rank itself is a copy, not counted).
+  std::array<long long, 2> sent(bool reverse) const;
 
  private:
   struct Part {

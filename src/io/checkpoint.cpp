@@ -188,7 +188,7 @@ std::string Checkpointer::write(long step, const FieldStore& fields, const nlohm
   }
   try {
     h5::Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", tmp);
-    h5::check(H5Pset_fapl_mpio(fapl, g_.comm, MPI_INFO_NULL), "H5Pset_fapl_mpio", tmp);
+    h5::check(H5Pset_fapl_mpio(fapl, g_.io, MPI_INFO_NULL), "H5Pset_fapl_mpio", tmp);
     h5::Id file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "file create", tmp);
     h5::Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate", tmp);
     h5::check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio", tmp);
@@ -302,7 +302,7 @@ std::string findCheckpoint(MPI_Comm comm, const std::string& path) {
 nlohmann::json readCheckpoint(const Grid& g, FieldStore& fields, const std::string& path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   h5::Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", path);
-  h5::check(H5Pset_fapl_mpio(fapl, g.comm, MPI_INFO_NULL), "H5Pset_fapl_mpio", path);
+  h5::check(H5Pset_fapl_mpio(fapl, g.io, MPI_INFO_NULL), "H5Pset_fapl_mpio", path);
   h5::Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl), H5Fclose, "file open", path);
   h5::Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate", path);
   h5::check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio", path);

@@ -70,7 +70,7 @@ std::string FieldWriter::write(int index, double time, const std::vector<OutFiel
   }
 
   H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", path);
-  check(H5Pset_fapl_mpio(fapl, g_.comm, MPI_INFO_NULL), "H5Pset_fapl_mpio", path);
+  check(H5Pset_fapl_mpio(fapl, g_.io, MPI_INFO_NULL), "H5Pset_fapl_mpio", path);
   // Free space is checked before the file exists: HDF5 cannot clean up after
   // a write that fails half-way (h5_util.hpp, requireSpace).
   double bytes = 0;

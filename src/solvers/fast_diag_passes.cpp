@@ -48,6 +48,11 @@ void FastDiagonalization::allocate(Passes<T>& P) const {
     P.i2 = grid("i2", inner_);
     P.oh = Kokkos::create_mirror_view(P.o1);
     P.ih = Kokkos::create_mirror_view(P.i1);
+    if (toMid_) {
+      P.m1 = grid("m1", mid_);
+      P.m2 = grid("m2", mid_);
+      P.mh = Kokkos::create_mirror_view(P.m1);
+    }
     P.rowsH.resize(g_.cellsOwned());
   } else {
     P.o1 = grid("t1", outer_);
@@ -78,45 +83,58 @@ void FastDiagonalization::build(Passes<T>& P, const Grid3& inv) const {
   const int nb0 = nb_[0], nb1 = nb_[1], nb2 = nb_[2], n0 = n_[0], n1 = n_[1], n2 = n_[2];
   const DenseOf<T> V0 = P.V[0], V1 = P.V[1], V2 = P.V[2];
   const CG inverse = P.inv;
-  P.fwd.clear();
-  P.inner.clear();
-  P.back.clear();
+  for (auto* ops : {&P.fwd, &P.mid, &P.inner, &P.midBack, &P.back}) ops->clear();
   const bool foldX = nb0 < n0;
+  const bool pencils = p1_ > 1; // the c transform on its own pencils (mid, midBack)
 #if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
-  // Host backends: the x transform and the folds around it as one pass (fdLinePairs).
+  // Host backends: the x transform and the folds around it as one pass (fdLinePairs); on
+  // slabs the fold along c too.
   if (!kOnDevice && n0 <= kFdLineMax) {
     const DenseOf<T> fw = fdPadRows(fdTransposed(V0), nb0), bw = fdPadRows(V0, nb0);
     if (s_ == 1) { // x and z on y-slabs; y solved on z-slabs
-      const bool foldC = nb2 < n2;
+      const bool foldC = nb2 < n2 && !pencils;
       P.fwd.push_back([=](const CG& i, const G& o) { fdLinePairs<2, false>(i, o, fw, nb0, foldX, foldC); });
-      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
-      P.back.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
       P.back.push_back([=](const CG& i, const G& o) { fdLinePairs<2, true>(i, o, bw, nb0, foldX, foldC); });
     } else {
-      const bool foldC = nb1 < n1;
+      const bool foldC = nb1 < n1 && !pencils;
       P.fwd.push_back([=](const CG& i, const G& o) { fdLinePairs<1, false>(i, o, fw, nb0, foldX, foldC); });
-      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
-      P.back.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
       P.back.push_back([=](const CG& i, const G& o) { fdLinePairs<1, true>(i, o, bw, nb0, foldX, foldC); });
+    }
+    if (!pencils) { // the c transform next to it, on the same slab
+      if (s_ == 1) {
+        P.mid.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
+        P.midBack.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
+      } else {
+        P.mid.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
+        P.midBack.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
+      }
     }
   }
 #endif
   if (P.fwd.empty()) { // device backends: one pass each
     if (foldX) P.fwd.push_back([](const CG& i, const G& o) { fdFold<0>(i, o); });
     P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<0, false>(i, o, V0, nb0); });
-    if (s_ == 1) { // x and z on y-slabs; y solved on z-slabs
-      if (nb2 < n2) P.fwd.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
-      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
-      P.back.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
-      if (nb2 < n2) P.back.push_back([](const CG& i, const G& o) { fdUnfold<2>(i, o); });
-    } else {       // x and y on z-slabs; z solved, or transformed and scaled, on y-slabs
-      if (nb1 < n1) P.fwd.push_back([](const CG& i, const G& o) { fdFold<1>(i, o); });
-      P.fwd.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
-      P.back.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
-      if (nb1 < n1) P.back.push_back([](const CG& i, const G& o) { fdUnfold<1>(i, o); });
-    }
     P.back.push_back([=](const CG& i, const G& o) { fdTransform<0, true>(i, o, V0, nb0); });
     if (foldX) P.back.push_back([](const CG& i, const G& o) { fdUnfold<0>(i, o); });
+  }
+  if (P.mid.empty()) { // the c transform with its folds
+    if (s_ == 1) { // x and z transformed; y solved
+      if (nb2 < n2) P.mid.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
+      P.mid.push_back([=](const CG& i, const G& o) { fdTransform<2, false>(i, o, V2, nb2); });
+      P.midBack.push_back([=](const CG& i, const G& o) { fdTransform<2, true>(i, o, V2, nb2); });
+      if (nb2 < n2) P.midBack.push_back([](const CG& i, const G& o) { fdUnfold<2>(i, o); });
+    } else {       // x and y transformed; z solved, or transformed and scaled
+      if (nb1 < n1) P.mid.push_back([](const CG& i, const G& o) { fdFold<1>(i, o); });
+      P.mid.push_back([=](const CG& i, const G& o) { fdTransform<1, false>(i, o, V1, nb1); });
+      P.midBack.push_back([=](const CG& i, const G& o) { fdTransform<1, true>(i, o, V1, nb1); });
+      if (nb1 < n1) P.midBack.push_back([](const CG& i, const G& o) { fdUnfold<1>(i, o); });
+    }
+  }
+  if (!pencils) { // one slab: x then c forward, c then x back
+    P.fwd.insert(P.fwd.end(), P.mid.begin(), P.mid.end());
+    P.back.insert(P.back.begin(), P.midBack.begin(), P.midBack.end());
+    P.mid.clear();
+    P.midBack.clear();
   }
   if (s_ < 0) {
     if (nb2 < n2) P.inner.push_back([](const CG& i, const G& o) { fdFold<2>(i, o); });
@@ -132,21 +150,20 @@ void FastDiagonalization::build(Passes<T>& P, const Grid3& inv) const {
     const Dense Vs = V_[s_], VsT = VsT_; // the solve axis is not folded: V_[s_] is its whole eigenvector matrix
     const auto work = lineWork_;
     const double iha = ih_[0], ihc = ih_[c_], ihs = ih_[s_], cut = cut_;
-    const int off = inner_.lo[c_];
+    const int off = inner_.lo[c_], offA = inner_.lo[0];
     if (s_ == 1)
       P.inner.push_back([=](const CG& i, const G& o) {
-        fdTridiagonal<1, T>(i, o, cp, dp, tri, la, lc, iha, ihc, ihs, off);
-        fdDenseLines<1, T>(i, o, lines, Vs, VsT, ls, la, lc, iha, ihc, ihs, off, cut, work);
+        fdTridiagonal<1, T>(i, o, cp, dp, tri, la, lc, iha, ihc, ihs, off, offA);
+        fdDenseLines<1, T>(i, o, lines, Vs, VsT, ls, la, lc, iha, ihc, ihs, off, cut, work, offA);
       });
     else
       P.inner.push_back([=](const CG& i, const G& o) {
-        fdTridiagonal<2, T>(i, o, cp, dp, tri, la, lc, iha, ihc, ihs, off);
-        fdDenseLines<2, T>(i, o, lines, Vs, VsT, ls, la, lc, iha, ihc, ihs, off, cut, work);
+        fdTridiagonal<2, T>(i, o, cp, dp, tri, la, lc, iha, ihc, ihs, off, offA);
+        fdDenseLines<2, T>(i, o, lines, Vs, VsT, ls, la, lc, iha, ihc, ihs, off, cut, work, offA);
       });
   }
   P.all = P.fwd;
-  P.all.insert(P.all.end(), P.inner.begin(), P.inner.end());
-  P.all.insert(P.all.end(), P.back.begin(), P.back.end());
+  for (const auto* ops : {&P.mid, &P.inner, &P.midBack, &P.back}) P.all.insert(P.all.end(), ops->begin(), ops->end());
 }
 
 template <class T>
@@ -166,16 +183,42 @@ void FastDiagonalization::run(const Passes<T>& P, const Kokkos::View<const T*, K
   Kokkos::deep_copy(P.o1, P.oh);
   chain(P.fwd, CGrid3Of<T>(P.o1), P.o2, P.o1, P.o2);
   Kokkos::deep_copy(P.oh, P.o2);
-  toInner_->forward(P.oh.data(), P.ih.data());
+  if (toMid_) { // x pencils -> c pencils, the c transform
+    toMid_->forward(P.oh.data(), P.mh.data());
+    Kokkos::deep_copy(P.m1, P.mh);
+    chain(P.mid, CGrid3Of<T>(P.m1), P.m2, P.m1, P.m2);
+    Kokkos::deep_copy(P.mh, P.m2);
+  }
+  toInner_->forward(toMid_ ? P.mh.data() : P.oh.data(), P.ih.data());
   Kokkos::deep_copy(P.i1, P.ih);
   chain(P.inner, CGrid3Of<T>(P.i1), P.i2, P.i1, P.i2);
   Kokkos::deep_copy(P.ih, P.i2);
-  toInner_->backward(P.ih.data(), P.oh.data());
+  if (toMid_) {
+    toInner_->backward(P.ih.data(), P.mh.data());
+    Kokkos::deep_copy(P.m1, P.mh);
+    chain(P.midBack, CGrid3Of<T>(P.m1), P.m2, P.m1, P.m2);
+    Kokkos::deep_copy(P.mh, P.m2);
+    toMid_->backward(P.mh.data(), P.oh.data());
+  } else {
+    toInner_->backward(P.ih.data(), P.oh.data());
+  }
   Kokkos::deep_copy(P.o1, P.oh);
   chain(P.back, CGrid3Of<T>(P.o1), P.o2, P.o1, P.o2);
   Kokkos::deep_copy(P.oh, P.o2);
   toOuter_->backward(P.oh.data(), P.rowsH.data());
   Kokkos::deep_copy(z, rh);
+}
+
+std::array<long long, 2> FastDiagonalization::traffic() const {
+  std::array<long long, 2> t{0, 0};
+  const long long bytes = single_ ? sizeof(float) : sizeof(double);
+  for (const auto* m : {toOuter_.get(), toMid_.get(), toInner_.get()})
+    if (m) {
+      const auto f = m->sent(false), b = m->sent(true);
+      t[0] += f[0] + b[0];
+      t[1] += (f[1] + b[1]) * bytes;
+    }
+  return t;
 }
 
 // Used by setup and the constructor (fast_diagonalization.cpp).

@@ -107,7 +107,15 @@ void split(int m, int size, int p, int& lo, int& n) {
 }
 } // namespace
 
-FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm, bool single, bool tridiagonal)
+std::array<int, 2> FastDiagonalization::pencilGrid(int size, const int n[3], int s, int c) {
+  const int cap2 = std::min(n[s], n[c]), cap1 = std::min(n[0], n[c]);
+  if (size <= cap2) return {1, size};
+  for (int p1 = 2; p1 <= cap1; ++p1)
+    if (size % p1 == 0 && size / p1 <= cap2) return {p1, size / p1};
+  return {std::max(1, std::min(cap1, size / cap2)), cap2}; // no exact fit: the rest idle
+}
+
+FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm, bool single, bool tridiagonal, int p1)
     : g_(g), single_(single), comm_(comm) {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
@@ -118,29 +126,44 @@ FastDiagonalization::FastDiagonalization(const Grid& g, MPI_Comm comm, bool sing
     for (int e : {2, 1})
       if (!g.periodic[e] && n_[e] >= 2 && (s_ < 0 || n_[e] > n_[s_])) s_ = e;
   c_ = s_ == 1 ? 2 : 1;
-  const int outerSplit = s_ == 1 ? 1 : 2, innerSplit = c_; // the inner slab keeps whole s lines
-  std::vector<Box> blocks(size_), outer(size_), inner(size_);
+  const int s = s_ >= 0 ? s_ : 2; // the pencils' third axis
+  if (p1 > 0) p1_ = p1, p2_ = std::max(1, size_ / p1);
+  else {
+    const auto pg = pencilGrid(size_, n_, s, c_);
+    p1_ = pg[0], p2_ = pg[1];
+  }
+  // Box of rank p in a layout whose axes e1, e2 are split p1 and p2 ways (p = a + p1 b).
+  auto pencil = [&](int p, int e1, int e2) {
+    Box b;
+    b.n = {n_[0], n_[1], n_[2]};
+    if (p >= p1_ * p2_) return Box{}; // idle in the passes
+    split(n_[e1], p1_, p % p1_, b.lo[e1], b.n[e1]);
+    split(n_[e2], p2_, p / p1_, b.lo[e2], b.n[e2]);
+    if (b.size() == 0) b.n = {0, 0, 0};
+    return b;
+  };
+  std::vector<Box> blocks(size_), outer(size_), mid(size_), inner(size_);
   const int mine[6] = {g.c0[0], g.c0[1], g.c0[2], g.ln[0], g.ln[1], g.ln[2]};
   std::vector<int> all(6 * size_);
   MPI_Allgather(mine, 6, MPI_INT, all.data(), 6, MPI_INT, comm_);
   for (int p = 0; p < size_; ++p) {
     blocks[p].lo = {all[6 * p], all[6 * p + 1], all[6 * p + 2]};
     blocks[p].n = {all[6 * p + 3], all[6 * p + 4], all[6 * p + 5]};
-    for (auto [boxes, e] : {std::pair<std::vector<Box>*, int>{&outer, outerSplit}, {&inner, innerSplit}}) {
-      int lo, n;
-      split(n_[e], size_, p, lo, n);
-      Box& b = (*boxes)[p];
-      b.lo = {0, 0, 0};
-      b.n = {n_[0], n_[1], n_[2]};
-      b.lo[e] = lo;
-      b.n[e] = n;
-    }
+    outer[p] = pencil(p, c_, s);
+    mid[p] = pencil(p, 0, s);
+    inner[p] = pencil(p, 0, c_);
   }
   outer_ = outer[rank_];
+  mid_ = mid[rank_];
   inner_ = inner[rank_];
   if (size_ > 1) {
     toOuter_ = std::make_unique<Redistribute>(comm_, blocks, outer);
-    toInner_ = std::make_unique<Redistribute>(comm_, outer, inner);
+    if (p1_ > 1) {
+      toMid_ = std::make_unique<Redistribute>(comm_, outer, mid);
+      toInner_ = std::make_unique<Redistribute>(comm_, mid, inner);
+    } else {
+      toInner_ = std::make_unique<Redistribute>(comm_, outer, inner);
+    }
   }
   if (s_ >= 0) {
     cp_ = Grid3("fd_tri_c", inner_.n[0], inner_.n[1], inner_.n[2]);
@@ -155,11 +178,11 @@ void FastDiagonalization::findSingularLines(const Kokkos::View<double* [3], MemS
   // or below the cut (fd_tridiagonal.hpp): A0's null modes, few (the constant and
   // checkerboard modes of the transformed axes).
   std::vector<int> found;
-  const int no = inner_.n[c_], off = inner_.lo[c_];
+  const int no = inner_.n[c_], off = inner_.lo[c_], ni = inner_.n[0], offA = inner_.lo[0];
   for (int o = 0; o < no; ++o)
-    for (int i = 0; i < n_[0]; ++i) {
+    for (int i = 0; i < ni; ++i) {
       double sigma, tau;
-      fd_detail::lineCoef(lam(i, 0), lam(o + off, c_), ih_[0], ih_[c_], ih_[s_], sigma, tau);
+      fd_detail::lineCoef(lam(i + offA, 0), lam(o + off, c_), ih_[0], ih_[c_], ih_[s_], sigma, tau);
       double low = 1e300;
       for (int b = 0; b < n_[s_]; ++b) low = std::min(low, sigma * (1 - 0.25 * lam(b, s_)) + tau * lam(b, s_));
       if (low <= cut) found.insert(found.end(), {i, o});
@@ -269,7 +292,7 @@ void FastDiagonalization::setup(const VecField& coef) {
   Grid3 inv;
   if (s_ < 0) {
     inv = Grid3("fd_inverse_eigenvalues", inner_.n[0], inner_.n[1], inner_.n[2]);
-    fdInverseEigenvalues(inv, lam, ih[0], ih[1], ih[2], inner_.lo[1], cut_);
+    fdInverseEigenvalues(inv, lam, ih[0], ih[1], ih[2], inner_.lo[1], cut_, inner_.lo[0]);
   } else {
     VsT_ = Dense("fd_VsT", n_[s_], n_[s_]);
     fdTransposeDense(V_[s_], VsT_);

@@ -18,13 +18,22 @@
 // tridiagonal in the two other axes' modes, solved directly (kernels/fd_tridiagonal.hpp):
 // 2 n_s flops a cell less each way. With both y and z periodic, all three are transformed.
 //
-// MPI: the transforms and solves need whole grid lines. The two transformed axes run on an
-// outer slab (each rank a range of s with whole planes of the other two), the solve along s
-// (or, with no solve axis, the z transform and the scaling) on an inner slab (a range of the
-// other transformed axis); box-to-box moves (src/core/redistribute.hpp) each way: blocks ->
-// outer -> inner. s = z: outer z-slabs, inner y-slabs; s = y: outer y-slabs, inner z-slabs.
+// MPI: the transforms and solves need whole grid lines, so the passes run on pencils, each
+// whole along the axis it works on, over a p1 x p2 grid of ranks (p1 splits x or c, p2 s or c):
+//   x pencils (x transform): c split p1, s split p2
+//   c pencils (c transform): x split p1, s split p2
+//   s pencils (the solve along s; with no solve axis, the z transform and the scaling):
+//                            x split p1, c split p2
+// (s = y or z the solve axis, c the other transformed one; with no solve axis s = z, c = y),
+// with box-to-box moves (src/core/redistribute.hpp) each way: blocks -> x -> c -> s pencils.
+// With p1 = 1 the x and c pencils are one slab (whole planes of x and c, a range of s) and the
+// x and c transforms run there together (the fused x pass folds c too): the slab layout,
+// used while the ranks fit the planes (size <= n_s and n_c). Beyond that p1 > 1: at most
+// min(n_x, n_c) min(n_s, n_c) ranks work, not min(n_s, n_c). Every line is transformed and
+// solved alone, in the same order in every layout: the same bits at any p1 and rank count.
 #include <mpi.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -47,7 +56,13 @@ using ConstRowVector = Kokkos::View<const double*, Kokkos::LayoutLeft, MemSpace>
 class FastDiagonalization {
  public:
   // tridiagonal false: transform all three axes (the form before 2026-12-05; tests compare).
-  FastDiagonalization(const Grid& g, MPI_Comm comm, bool single = false, bool tridiagonal = true);
+  // p1: the rank grid's first extent (0: chosen, pencilGrid; tests force pencils with it).
+  FastDiagonalization(const Grid& g, MPI_Comm comm, bool single = false, bool tridiagonal = true, int p1 = 0);
+  // The rank grid p1 x p2 for `size` ranks on n cells with solve (layout) axis s and c:
+  // p1 = 1 while size <= min(n_s, n_c); else the p1 x p2 = size with the smallest p1 that
+  // fits (p1 <= min(n_x, n_c), p2 <= min(n_s, n_c)), or the largest grid that fits (the other
+  // ranks idle in the passes).
+  static std::array<int, 2> pencilGrid(int size, const int n[3], int s, int c);
   // Reads which faces keep their node rows from coef (collective); builds the 1-D
   // eigenvectors and the eigenvalue table. Cheap (1-D eigenproblems): call when the
   // zero pattern of coef changes.
@@ -61,18 +76,22 @@ class FastDiagonalization {
   bool single() const { return single_; }
   int solveAxis() const { return s_; } // the axis solved by lines (1 or 2), -1: none
   int singularLines() const { return (int)lines_.extent(0); } // on this rank (after setup)
+  std::array<int, 2> rankGrid() const { return {p1_, p2_}; }
+  // Per application on this rank: messages sent and bytes sent (the moves both ways).
+  std::array<long long, 2> traffic() const;
 
  private:
   template <class T>
   struct Passes { // one precision's passes and work arrays
     using Op = std::function<void(const CGrid3Of<T>&, const Grid3Of<T>&)>;
-    // outer slab: the two transforms forward; inner slab: the solve along s (or the third
-    // transform, the scaling and its inverse); outer slab: the two transforms back.
-    std::vector<Op> fwd, inner, back, all;
+    // x pencils: the x transform (and with p1 = 1 the c transform); c pencils (p1 > 1): the c
+    // transform; s pencils: the solve along s (or the third transform, the scaling and its
+    // inverse); then back the same way.
+    std::vector<Op> fwd, mid, inner, midBack, back, all;
     DenseOf<T> V[3];
     Grid3Of<T> inv;                 // no solve axis: 1/eigenvalue on this rank's inner slab of modes
-    Grid3Of<T> o1, o2, i1, i2;      // outer and inner work arrays (1 rank: the whole grid, o == i)
-    typename Grid3Of<T>::HostMirror oh, ih;
+    Grid3Of<T> o1, o2, m1, m2, i1, i2; // x, c and s pencils' work arrays (1 rank: the whole grid, all one)
+    typename Grid3Of<T>::HostMirror oh, mh, ih;
     Kokkos::View<T*, Kokkos::LayoutLeft, MemSpace> r, x; // rows in T (applyMasked; apply in float)
     mutable std::vector<T> rowsH;
   };
@@ -92,8 +111,9 @@ class FastDiagonalization {
   bool keepK_[3][2] = {}, keepM_[3][2] = {}; // face node rows kept: normal / tangential components
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
-  Box outer_, inner_;      // this rank's outer and inner slab
-  std::unique_ptr<Redistribute> toOuter_, toInner_; // blocks -> outer slabs -> inner slabs
+  int p1_ = 1, p2_ = 1;    // the rank grid of the pencils
+  Box outer_, mid_, inner_; // this rank's x, c and s pencil (p1 = 1: mid_ = outer_, not used)
+  std::unique_ptr<Redistribute> toOuter_, toMid_, toInner_; // blocks -> x -> (c ->) s pencils
   Dense V_[3];             // per axis: eigenvectors (block diagonal after folding), double
   int nb_[3] = {0, 0, 0};  // first block of V_ (n: not folded)
   // The solve (s_ >= 0): eigenvalues per axis, K_s and M_s's diagonals, the singular lines

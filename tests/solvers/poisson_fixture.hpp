@@ -30,8 +30,8 @@ inline int rank() {
 struct Case {
   Grid g;
   Case(std::array<int, 3> n, std::array<bool, 3> per = {false, false, false},
-       std::array<double, 3> hi = {1, 1, 1})
-      : g(makeGrid(MPI_COMM_WORLD, n, {0, 0, 0}, hi, per)) {}
+       std::array<double, 3> hi = {1, 1, 1}, MPI_Comm comm = MPI_COMM_WORLD)
+      : g(makeGrid(comm, n, {0, 0, 0}, hi, per)) {}
   ~Case() { freeGrid(g); }
   Field cell(const char* name) const { return Field(std::string(name), g.ext[0], g.ext[1], g.ext[2]); }
   VecField vec(const char* name) const {
