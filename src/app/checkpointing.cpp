@@ -230,9 +230,39 @@ void Simulation::snapshot() {
   haveBackup_ = true;
 }
 
+namespace {
+// What the ranks sent through MPI (core/mpi_traffic.hpp): per stage and since start-up, for
+// rank 0 and the most over the ranks (element-wise; an interior rank has the most
+// neighbours). Collective.
+nlohmann::json mpiTraffic(const std::map<std::string, mpi_traffic::Counts>& stages, MPI_Comm comm, int rank) {
+  std::vector<std::pair<std::string, mpi_traffic::Counts>> all(stages.begin(), stages.end());
+  all.emplace_back("", mpi_traffic::now()); // the total
+  std::vector<long long> mine, most(2 * mpi_traffic::kKinds * all.size());
+  for (const auto& [name, c] : all)
+    for (int k = 0; k < mpi_traffic::kKinds; ++k) mine.push_back(c.messages[k]), mine.push_back(c.bytes[k]);
+  MPI_Reduce(mine.data(), most.data(), (int)mine.size(), MPI_LONG_LONG, MPI_MAX, 0, comm);
+  nlohmann::json j;
+  if (rank != 0) return j;
+  size_t q = 0;
+  for (const auto& [name, c] : all) {
+    nlohmann::json& o = name.empty() ? j["total"] : j["per_stage"][name];
+    for (int k = 0; k < mpi_traffic::kKinds; ++k, q += 2)
+      o[mpi_traffic::name(mpi_traffic::Kind(k))] = {{"messages", mine[q]},     {"bytes", mine[q + 1]},
+                                                    {"messages_max", most[q]}, {"bytes_max", most[q + 1]}};
+  }
+  return j;
+}
+} // namespace
+
 void Simulation::writeSummary(const RunResult& r, const std::string& stop) {
-  if (opt_.outDir.empty() || st_.grid.rank != 0) return;
+  if (opt_.outDir.empty()) return;
+  const nlohmann::json traffic = mpiTraffic(pipeline_.stageTraffic, st_.grid.comm, st_.grid.rank); // collective
+  if (st_.grid.rank != 0) return;
   nlohmann::json j = summary(r);
+  // Rank 0's and the most over the ranks: messages (point to point: sends; all to all:
+  // destinations with data; collective: calls) and bytes sent. Stress and forces run inside
+  // momentum and are counted there too, as their wall seconds are.
+  j["mpi"] = traffic;
   if (!stop.empty()) j["stopped"] = stop;
   // finished, or why not; stopped by a signal or the wall limit, it continues with --restart.
   const bool blowUp = !stop.empty() && !r.signal && !r.wallLimit;

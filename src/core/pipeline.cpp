@@ -61,9 +61,11 @@ void Pipeline::run(Stage s, State& st) {
   if (it == tasks_.end()) return;
   for (auto& t : it->second) {
     const double t0 = MPI_Wtime();
+    const mpi_traffic::Counts c0 = mpi_traffic::now();
     t.fn(st);
     Kokkos::fence(); // honest timings on asynchronous backends
     const double dt = MPI_Wtime() - t0;
+    stageTraffic[toString(s)] += mpi_traffic::now() - c0;
     stageSeconds[toString(s)] += dt;
     effectSeconds[t.effect] += dt;
   }

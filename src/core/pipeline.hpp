@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/mpi_traffic.hpp"
+
 namespace voigt {
 
 struct State;
@@ -35,8 +37,10 @@ class Pipeline {
   bool empty(Stage s) const { return tasks(s).empty(); }
   std::string describe() const; // for `voigt check`
 
-  // Wall seconds per stage and per effect (accumulated over the run).
+  // Wall seconds per stage and per effect (accumulated over the run), and what this rank
+  // sent through MPI in each stage (core/mpi_traffic.hpp).
   std::map<std::string, double> stageSeconds, effectSeconds;
+  std::map<std::string, mpi_traffic::Counts> stageTraffic;
 
  private:
   std::map<Stage, std::vector<Task>> tasks_;

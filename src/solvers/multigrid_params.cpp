@@ -29,9 +29,12 @@ Teuchos::ParameterList multigridParameters(const PoissonSettings& cfg, bool exac
     // represent them on the coarse levels. Dam break at density ratio 1000, 64^3,
     // tolerance 1e-8: 1000 (the cap) -> 160-200 iterations; 32^3: 340-430 -> 95-115.
     // A smaller coarsest level (MueLu's default is 2000 rows, solved here by one SGS
-    // sweep) takes another 20 % off at 64^3 (perf/README.md, "Exact projection").
+    // sweep) takes another 20 % off at 64^3 (perf/README.md, "Exact projection"). 200 rows a
+    // rank: with fewer, a level of a few aggregates a rank (uncoupled aggregation stops at
+    // the rank's edges) broke CG down at once on 8 ranks (dam break 24^3 and 48^3: p^T A p
+    // <= 0 at iteration 2; 1,600 rows, 49 iterations like 1 rank's 41).
     p.sublist("user data").set("Nullspace", nearNull);
-    p.set("coarse: max size", 200);
+    p.set("coarse: max size", 200 * int(nearNull->getMap()->getComm()->getSize()));
   }
   if (cfg.multigridSmoother == "chebyshev") {
     p.set("smoother: type", "CHEBYSHEV");

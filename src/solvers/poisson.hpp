@@ -6,6 +6,7 @@
 // with divergence()/subtractGradient() in kernels/projection_ops.hpp, so that
 // after u -= dt coef G dp one has D u = -dt (rhs - A dp) to round-off).
 // Approximate operator: compact 7-point variable-coefficient Laplacian.
+#include <array>
 #include <memory>
 
 #include "core/field.hpp"
@@ -53,6 +54,8 @@ class PoissonSolver {
   virtual void apply(const Field& x, const Field& y) = 0; // y = A x on owned cells
   virtual long long globalNonzeros() const = 0;
   virtual int nullModeCount() const = 0;
+  // The fast diagonalization's rank grid p1 x p2 (fast_diagonalization.hpp); {0, 0}: none.
+  virtual std::array<int, 2> fdRankGrid() const { return {0, 0}; }
 };
 
 // Collective over g.comm. The solver keeps its own duplicate of the communicator.

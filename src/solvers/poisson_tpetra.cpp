@@ -188,6 +188,7 @@ class TpetraPoisson final : public PoissonSolver {
 
   // 0 without a matrix (matrix-free exact operator with fast diagonalization or none).
   long long globalNonzeros() const override { return A_.is_null() ? 0 : (long long)A_->getGlobalNumEntries(); }
+  std::array<int, 2> fdRankGrid() const override { return fd_ ? fd_->rankGrid() : std::array<int, 2>{0, 0}; }
   int nullModeCount() const override { return ns_->dimension(); }
 
  private:

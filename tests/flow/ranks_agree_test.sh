@@ -24,6 +24,17 @@ WORK=$(mktemp -d "${TMPDIR:-/tmp}/voigt_ranks_XXXXXX")
 . "$SRC/tests/support/voigt_run.sh"
 SETS=(--set "domain.cells=[12,12,6]" --set output.interval=0.0005 --set "probes=[]" --steps 10)
 SCENE=$SRC/cases/falling_block/falling_block.yaml
+if [ "${4:-}" = multigrid ]; then
+  run "$WORK/mg.log" run "$SRC/perf/scenes/dam_break.yaml" -o "$WORK/mg" --set "domain.cells=[24,24,24]" \
+    --set output.enabled=false --set time.dt=0 --set projection.operator=exact --set projection.preconditioner=multigrid \
+    --steps 3
+  [ "$RC" -eq 0 ] || fail "$NP ranks, multigrid: exit code $RC"
+  b=$(json "$WORK/mg/summary.json" "['poisson']['breakdowns']")
+  u=$(json "$WORK/mg/summary.json" "['poisson']['unconverged']")
+  [ "$b" = 0.0 ] && [ "$u" = 0.0 ] || fail "multigrid at $NP ranks: $b CG breakdowns, $u solves unconverged"
+  echo "PASS: multigrid at $NP ranks: no breakdown, every solve converged"
+  exit 0
+fi
 RANKS=$NP
 NP=1 run "$WORK/one.log" run "$SCENE" -o "$WORK/one" "${SETS[@]}"
 [ "$RC" -eq 0 ] || fail "1 rank: exit code $RC"

@@ -4,6 +4,7 @@
 // alone, in the same order, whichever rank holds it. Run by CTest at 1, 2, 4 and 8 ranks
 // (label oversubscribed above 2: `ctest -LE oversubscribed` skips them).
 #include "poisson_fixture.hpp"
+#include "core/mpi_traffic.hpp"
 #include "solvers/fast_diagonalization.hpp"
 
 #include <cstring> // memcmp
@@ -100,4 +101,24 @@ TEST(FastDiagonalization, RankGrid) {
   EXPECT_EQ(FastDiagonalization::pencilGrid(40, n, 2, 1), (A{4, 4}));
   const int big[3] = {512, 512, 512}; // the user: 2,048 ranks on 512^3, none idle
   EXPECT_EQ(FastDiagonalization::pencilGrid(2048, big, 2, 1), (A{4, 512}));
+}
+
+// What summary.json reports as MPI traffic (core/mpi_traffic.hpp: the PMPI wrappers) is what
+// was sent: around one application, the wrappers' all-to-all count equals the moves' own
+// (Redistribute::sent, from the boxes), and nothing goes point to point.
+TEST(FastDiagonalization, TrafficCountedByTheWrappers) {
+  Case c({10, 4, 6}, {false, false, false}, {1, 0.9, 1.2});
+  for (bool single : {false, true}) {
+    FastDiagonalization fd(c.g, c.g.comm, single);
+    fd.setup(makeCoef(c, {-1, false}));
+    RowVector r = rows(c.g), z("z", c.g.cellsOwned());
+    const mpi_traffic::Counts before = mpi_traffic::now();
+    fd.apply(r, z);
+    const mpi_traffic::Counts d = mpi_traffic::now() - before;
+    const auto t = fd.traffic();
+    EXPECT_EQ(d.messages[mpi_traffic::AllToAll], t[0]);
+    EXPECT_EQ(d.bytes[mpi_traffic::AllToAll], t[1]);
+    EXPECT_EQ(d.messages[mpi_traffic::PointToPoint], 0);
+    if (c.g.size > 1) EXPECT_GT(t[1], 0);
+  }
 }

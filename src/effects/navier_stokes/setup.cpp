@@ -248,6 +248,7 @@ void NavierStokes::summary(const State& st, nlohmann::json& j) const {
                   {"null_modes", solver_ ? solver_->nullModeCount() : 0},
                   {"matrix_nonzeros", solver_ ? solver_->globalNonzeros() : 0},
                   {"operator", scene_->projection.op == ProjectionCfg::Op::Exact ? "exact" : "approximate"}};
+  if (solver_ && solver_->fdRankGrid()[0] > 0) j["poisson"]["fast_diagonalization_ranks"] = solver_->fdRankGrid();
   if (semiImplicit_) {
     const double v = get("viscous_solves");
     j["viscous"] = {{"step", "semi_implicit"},
