@@ -8,6 +8,8 @@ Also the one-rank seconds per step and stage at three grid sizes (the per-core r
 model needs, perf/scaling/model.py).
 
     perf/scaling/traffic.py [--quick] [--out DIR]     # writes DIR/traffic.csv, DIR/rates.csv
+    perf/scaling/traffic.py --no-rates                # the counts only
+    perf/scaling/traffic.py --rates 96,128            # more one-rank rates, appended
 
 Budget: full about 20 min on 2 busy cores (64 ranks of a 48^3 grid are the slow runs);
 --quick 24^3 and 1-16 ranks, 3 min.
@@ -42,7 +44,8 @@ def run(scene, n, ranks, steps, variant, out):
 
 
 def flat(j):
-    d = {"its": j["poisson"]["iterations_mean"] * j["poisson"]["solves"], "wall": j["wall_seconds"]}
+    d = {"its": j["poisson"]["iterations_mean"] * j["poisson"]["solves"], "wall": j["wall_seconds"],
+         "poisson_setup": j["poisson"].get("setup_seconds", 0), "poisson_solve": j["poisson"].get("solve_seconds", 0)}
     for stage, kinds in list(j["mpi"]["per_stage"].items()) + [("total", j["mpi"]["total"])]:
         for k in KINDS:
             for q in ("messages", "bytes", "messages_max", "bytes_max"):
@@ -66,12 +69,26 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--out", default=None)
+    ap.add_argument("--rates", default=None, help="only the one-rank rates at these n (comma-separated), "
+                    "appended to DIR/rates.csv")
+    ap.add_argument("--no-rates", action="store_true", help="only the counts (DIR/traffic.csv)")
     a = ap.parse_args()
     out = a.out or os.path.join(HERE, "quick" if a.quick else "results")
     os.makedirs(out, exist_ok=True)
     n, ranks, steps = (24, [1, 2, 4, 8, 16], 2) if a.quick else (48, [1, 2, 4, 8, 16, 32, 64], 3)
     rate_ns = [16, 24, 32] if a.quick else [32, 48, 64]
     rows, rates = [], []
+    if a.rates:
+        path = os.path.join(out, "rates.csv")
+        rates = series.read_csv(path) if os.path.exists(path) else []
+        with tempfile.TemporaryDirectory() as tmp:
+            for m in [int(x) for x in a.rates.split(",")]:
+                for scene in ("falling_block", "dam_break"):
+                    for variant in ("fd", "mg"):
+                        log(scene, variant, "%d^3" % m, "1 rank (rates)")
+                        rates.append(per_step(scene, m, 1, variant, steps, tmp))
+                        write_csv(path, rates)
+        return
     with tempfile.TemporaryDirectory() as tmp:
         for scene in ("falling_block", "dam_break"):
             for variant in ("fd", "mg"):
@@ -80,11 +97,12 @@ def main():
                         continue  # multigrid's counts at a few rank counts
                     log(scene, variant, "%d^3" % n, p, "ranks")
                     rows.append(per_step(scene, n, p, variant, steps, tmp))
-                for m in rate_ns:
+                for m in [] if a.no_rates else rate_ns:
                     log(scene, variant, "%d^3" % m, "1 rank (rates)")
                     rates.append(per_step(scene, m, 1, variant, steps, tmp))
     write_csv(os.path.join(out, "traffic.csv"), rows)
-    write_csv(os.path.join(out, "rates.csv"), rates)
+    if not a.no_rates:
+        write_csv(os.path.join(out, "rates.csv"), rates)
 
 
 if __name__ == "__main__":

@@ -3,6 +3,7 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <climits>
 #include <csignal>
 #include <cmath>
@@ -109,6 +110,28 @@ std::string Simulation::describe() const {
   os << "grid       " << g.n[0] << " x " << g.n[1] << " x " << g.n[2] << " cells, h = " << g.h[0] << ", "
      << g.h[1] << ", " << g.h[2] << "\n";
   os << "ranks      " << g.size << " (" << g.dims[0] << " x " << g.dims[1] << " x " << g.dims[2] << ")\n";
+  nlohmann::json sj; // what the effects report now: the fast diagonalization's rank grid
+  for (auto& e : effects_) e->summary(st_, sj);
+  if (sj.contains("poisson") && sj["poisson"].contains("fast_diagonalization_ranks")) {
+    const auto fr = sj["poisson"]["fast_diagonalization_ranks"];
+    const int p1 = fr[0], p2 = fr[1];
+    os << "           projection's fast diagonalization: " << p1 << " x " << p2
+       << (p1 == 1 ? " (slabs: every rank holds whole planes)" : " pencils (more ranks than planes for slabs)");
+    if (p1 * p2 < g.size) os << ", " << g.size - p1 * p2 << " ranks idle in its passes";
+    // perf/scaling/README.md, "Traffic": the projection's one-rank cost, fast diagonalization
+    // (iterations flat in n, O(n) flops a cell and iteration) against multigrid on the same
+    // operator (iterations growing with n): multigrid is the cheaper from n ~ 650 on the dam
+    // break (density ratio 1000), never up to 4096 on the falling block (ratio 83).
+    double rmin = 1e300, rmax = 0;
+    for (const auto& [name, m] : scene_.materials) rmin = std::min(rmin, m.density), rmax = std::max(rmax, m.density);
+    const int n = std::max({g.n[0], g.n[1], g.n[2]});
+    const double ratio = rmax / rmin;
+    os << "\n           scaling model: multigrid is the cheaper projection only from ~650 cells an axis at "
+          "density ratio 1000 (here "
+       << n << ", ratio " << ratio << ")";
+    if (n >= 650 && ratio >= 1000) os << ": consider projection.preconditioner: multigrid";
+    os << "\n";
+  }
   os << "boundaries";
   const char* faces[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
   for (int f = 0; f < 6; ++f) os << " " << faces[f] << ":" << toString(scene_.bc[f].type);

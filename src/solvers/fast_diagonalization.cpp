@@ -109,9 +109,11 @@ void split(int m, int size, int p, int& lo, int& n) {
 
 std::array<int, 2> FastDiagonalization::pencilGrid(int size, const int n[3], int s, int c) {
   const int cap2 = std::min(n[s], n[c]), cap1 = std::min(n[0], n[c]);
-  if (size <= cap2) return {1, size};
-  for (int p1 = 2; p1 <= cap1; ++p1)
-    if (size % p1 == 0 && size / p1 <= cap2) return {p1, size / p1};
+  if (size <= std::min(cap2, kSlabRanks)) return {1, size};
+  int best = 0; // the divisor nearest sqrt(size) that fits, the smaller of a pair
+  for (int p1 = 1; p1 <= cap1 && p1 * p1 <= size; ++p1)
+    if (size % p1 == 0 && size / p1 <= cap2) best = p1;
+  if (best > 0) return {best, size / best};
   return {std::max(1, std::min(cap1, size / cap2)), cap2}; // no exact fit: the rest idle
 }
 

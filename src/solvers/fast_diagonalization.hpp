@@ -59,9 +59,13 @@ class FastDiagonalization {
   // p1: the rank grid's first extent (0: chosen, pencilGrid; tests force pencils with it).
   FastDiagonalization(const Grid& g, MPI_Comm comm, bool single = false, bool tridiagonal = true, int p1 = 0);
   // The rank grid p1 x p2 for `size` ranks on n cells with solve (layout) axis s and c:
-  // p1 = 1 while size <= min(n_s, n_c); else the p1 x p2 = size with the smallest p1 that
-  // fits (p1 <= min(n_x, n_c), p2 <= min(n_s, n_c)), or the largest grid that fits (the other
-  // ranks idle in the passes).
+  // slabs (p1 = 1) up to kSlabRanks ranks where they fit (size <= min(n_s, n_c)): one move
+  // fewer each way, the fewest bytes; else p1 x p2 = size with p1 <= p2 as near sqrt(size)
+  // as fits (p1 <= min(n_x, n_c), p2 <= min(n_s, n_c)): each rank then exchanges with about
+  // 2 sqrt(size) others an application, not size (slabs: 159 messages against 53 at 64 ranks
+  // on 75^3, perf/scaling/README.md "Traffic"); where no factorisation fits, the largest grid
+  // that does (the other ranks idle in the passes).
+  static constexpr int kSlabRanks = 8;
   static std::array<int, 2> pencilGrid(int size, const int n[3], int s, int c);
   // Reads which faces keep their node rows from coef (collective); builds the 1-D
   // eigenvectors and the eigenvalue table. Cheap (1-D eigenproblems): call when the

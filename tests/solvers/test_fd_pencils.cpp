@@ -87,8 +87,9 @@ TEST(FastDiagonalization, PencilsAreTheOneRankResult) {
   }
 }
 
-// The chosen rank grid: slabs while the ranks fit the planes, then pencils with every rank
-// working where the count factors, else the largest grid that fits.
+// The chosen rank grid: slabs while the ranks fit the planes (up to 8 ranks), then pencils
+// near sqrt(size) x sqrt(size) with every rank working where the count factors, else the
+// largest grid that fits.
 TEST(FastDiagonalization, RankGrid) {
   const int n[3] = {10, 4, 6}; // s = z (2), c = y (1): min(n_s, n_c) = 4, min(n_x, n_c) = 4
   using A = std::array<int, 2>;
@@ -100,7 +101,10 @@ TEST(FastDiagonalization, RankGrid) {
   EXPECT_EQ(FastDiagonalization::pencilGrid(17, n, 2, 1), (A{4, 4})); // 17 is prime: 16 work
   EXPECT_EQ(FastDiagonalization::pencilGrid(40, n, 2, 1), (A{4, 4}));
   const int big[3] = {512, 512, 512}; // the user: 2,048 ranks on 512^3, none idle
-  EXPECT_EQ(FastDiagonalization::pencilGrid(2048, big, 2, 1), (A{4, 512}));
+  EXPECT_EQ(FastDiagonalization::pencilGrid(2048, big, 2, 1), (A{32, 64}));
+  EXPECT_EQ(FastDiagonalization::pencilGrid(8, big, 2, 1), (A{1, 8}));    // a workstation: slabs
+  EXPECT_EQ(FastDiagonalization::pencilGrid(64, big, 2, 1), (A{8, 8}));
+  EXPECT_EQ(FastDiagonalization::pencilGrid(512, big, 2, 1), (A{16, 32}));
 }
 
 // What summary.json reports as MPI traffic (core/mpi_traffic.hpp: the PMPI wrappers) is what
