@@ -5,6 +5,9 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace voigt::mpi_traffic {
 namespace {
 Counts totals;
@@ -82,6 +85,17 @@ int MPI_Alltoallv(const void* sb, const int sc[], const int sd[], MPI_Datatype s
                   const int rd[], MPI_Datatype rt, MPI_Comm c) {
   allToAll(sc, st, c);
   return PMPI_Alltoallv(sb, sc, sd, st, rb, rc, rd, rt, c);
+}
+int MPI_Neighbor_alltoallv(const void* sb, const int sc[], const int sd[], MPI_Datatype st, void* rb, const int rc[],
+                           const int rd[], MPI_Datatype rt, MPI_Comm c) {
+  int in = 0, out = 0, weighted = 0, rank = 0;
+  PMPI_Dist_graph_neighbors_count(c, &in, &out, &weighted);
+  std::vector<int> srcs(std::max(in, 1)), dsts(std::max(out, 1));
+  PMPI_Dist_graph_neighbors(c, in, srcs.data(), MPI_UNWEIGHTED, out, dsts.data(), MPI_UNWEIGHTED);
+  PMPI_Comm_rank(c, &rank);
+  for (int q = 0; q < out; ++q)
+    if (dsts[q] != rank && sc[q] > 0) ++totals.messages[AllToAll], totals.bytes[AllToAll] += bytesOf(sc[q], st);
+  return PMPI_Neighbor_alltoallv(sb, sc, sd, st, rb, rc, rd, rt, c);
 }
 int MPI_Allreduce(const void* sb, void* rb, int n, MPI_Datatype t, MPI_Op op, MPI_Comm c) {
   collective(n, t);

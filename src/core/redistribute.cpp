@@ -46,36 +46,48 @@ Redistribute::Redistribute(MPI_Comm comm, const std::vector<Box>& src, const std
   MPI_Comm_size(comm, &size);
   mySrc_ = src[rank];
   myDst_ = dst[rank];
-  sendCount_.assign(size, 0);
-  recvCount_.assign(size, 0);
+  std::vector<int> to, from; // partners, in rank order
   for (int p = 0; p < size; ++p) {
     const Box s = intersect(mySrc_, dst[p]);
     const Box r = intersect(src[p], myDst_);
-    sends_.push_back({s, p});
-    recvs_.push_back({r, p});
     if (s.size() > INT_MAX || r.size() > INT_MAX) throw std::overflow_error("Redistribute: a part of over 2^31 cells");
-    sendCount_[p] = (int)s.size();
-    recvCount_[p] = (int)r.size();
+    if (s.size() > 0) sends_.push_back({s, p}), sendCount_.push_back((int)s.size()), to.push_back(p);
+    if (r.size() > 0) recvs_.push_back({r, p}), recvCount_.push_back((int)r.size()), from.push_back(p);
   }
-  sendDispl_.assign(size, 0);
-  recvDispl_.assign(size, 0);
-  for (int p = 1; p < size; ++p) {
-    if (1LL * sendDispl_[p - 1] + sendCount_[p - 1] > INT_MAX || 1LL * recvDispl_[p - 1] + recvCount_[p - 1] > INT_MAX)
-      throw std::overflow_error("Redistribute: more than 2^31 cells a rank (MPI int counts)");
-    sendDispl_[p] = sendDispl_[p - 1] + sendCount_[p - 1];
-    recvDispl_[p] = recvDispl_[p - 1] + recvCount_[p - 1];
-  }
-  sendBuf_.resize(std::max<size_t>(1, sendDispl_.back() + sendCount_.back()));
-  recvBuf_.resize(std::max<size_t>(1, recvDispl_.back() + recvCount_.back()));
+  auto displ = [](const std::vector<int>& count, std::vector<int>& d) {
+    d.assign(count.size(), 0);
+    for (size_t p = 1; p < count.size(); ++p) {
+      if (1LL * d[p - 1] + count[p - 1] > INT_MAX)
+        throw std::overflow_error("Redistribute: more than 2^31 cells a rank (MPI int counts)");
+      d[p] = d[p - 1] + count[p - 1];
+    }
+    return count.empty() ? 0 : size_t(d.back()) + size_t(count.back());
+  };
+  sendBuf_.resize(std::max<size_t>(1, displ(sendCount_, sendDispl_)));
+  recvBuf_.resize(std::max<size_t>(1, displ(recvCount_, recvDispl_)));
+  // Forward: this rank receives from `from`, sends to `to`; backward the reverse. Not
+  // reordered: the graph's ranks are comm's.
+  auto graph = [&](const std::vector<int>& in, const std::vector<int>& out, MPI_Comm* g) {
+    MPI_Dist_graph_create_adjacent(comm, (int)in.size(), in.empty() ? MPI_WEIGHTS_EMPTY : in.data(), MPI_UNWEIGHTED,
+                                   (int)out.size(), out.empty() ? MPI_WEIGHTS_EMPTY : out.data(), MPI_UNWEIGHTED,
+                                   MPI_INFO_NULL, 0, g);
+  };
+  graph(from, to, &graph_[0]);
+  graph(to, from, &graph_[1]);
+}
+
+Redistribute::~Redistribute() {
+  for (MPI_Comm& g : graph_)
+    if (g != MPI_COMM_NULL) MPI_Comm_free(&g);
 }
 
 std::array<long long, 2> Redistribute::sent(bool reverse) const {
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
-  const auto& c = reverse ? recvCount_ : sendCount_;
+  const auto& parts = reverse ? recvs_ : sends_;
   std::array<long long, 2> t{0, 0};
-  for (size_t p = 0; p < c.size(); ++p)
-    if ((int)p != rank && c[p] > 0) ++t[0], t[1] += c[p];
+  for (const Part& p : parts)
+    if (p.rank != rank) ++t[0], t[1] += p.box.size();
   return t;
 }
 
@@ -93,11 +105,12 @@ void Redistribute::move(const T* in, T* out, bool reverse) const {
   const Box& from = reverse ? myDst_ : mySrc_;
   const Box& to = reverse ? mySrc_ : myDst_;
   for (size_t p = 0; p < sends.size(); ++p)
-    if (sc[p] > 0) copyPart(from, sends[p].box, const_cast<T*>(in), reinterpret_cast<T*>(sb.data()) + sd[p], true);
+    copyPart(from, sends[p].box, const_cast<T*>(in), reinterpret_cast<T*>(sb.data()) + sd[p], true);
   const MPI_Datatype type = sizeof(T) == sizeof(float) ? MPI_FLOAT : MPI_DOUBLE;
-  MPI_Alltoallv(sb.data(), sc.data(), sd.data(), type, rb.data(), rc.data(), rd.data(), type, comm_);
+  MPI_Neighbor_alltoallv(sb.data(), sc.data(), sd.data(), type, rb.data(), rc.data(), rd.data(), type,
+                         graph_[reverse ? 1 : 0]);
   for (size_t p = 0; p < recvs.size(); ++p)
-    if (rc[p] > 0) copyPart(to, recvs[p].box, out, reinterpret_cast<T*>(rb.data()) + rd[p], false);
+    copyPart(to, recvs[p].box, out, reinterpret_cast<T*>(rb.data()) + rd[p], false);
 }
 template void Redistribute::move(const double*, double*, bool) const;
 template void Redistribute::move(const float*, float*, bool) const;
