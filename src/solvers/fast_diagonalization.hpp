@@ -28,7 +28,7 @@
 // with box-to-box moves (src/core/redistribute.hpp) each way: blocks -> x -> c -> s pencils.
 // With p1 = 1 the x and c pencils are one slab (whole planes of x and c, a range of s) and the
 // x and c transforms run there together (the fused x pass folds c too): the slab layout,
-// used while the ranks fit the planes (size <= n_s and n_c). Beyond that p1 > 1: at most
+// used up to 8 ranks where they fit the planes (pencilGrid). Beyond that p1 > 1: up to
 // min(n_x, n_c) min(n_s, n_c) ranks work, not min(n_s, n_c). Every line is transformed and
 // solved alone, in the same order in every layout: the same bits at any p1 and rank count.
 #include <mpi.h>
