@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "core/build_info.hpp"
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "io/checkpoint.hpp"
 #include "io/fields_out.hpp"
@@ -263,6 +264,13 @@ void Simulation::writeSummary(const RunResult& r, const std::string& stop) {
   // destinations with data; collective: calls) and bytes sent. Stress and forces run inside
   // momentum and are counted there too, as their wall seconds are.
   j["mpi"] = traffic;
+  // Rank 0's copies between device and host memory by reason (core/host_access.hpp): what a
+  // device build moves across the bus; on the host they alias and cost nothing.
+  nlohmann::json hc = nlohmann::json::object();
+  for (const auto& [why, c] : host_access::copies()) hc[why] = {{"count", c.count}, {"bytes", c.bytes}};
+  j["host_copies"] = hc;
+  if (host_access::armed()) // VOIGT_HOST_TOUCH_CHECK: it ran and nothing touched a field
+    j["host_touch_check"] = {{"kernels", host_access::kernels()}, {"deep_copies", host_access::deepCopies()}};
   if (!stop.empty()) j["stopped"] = stop;
   // finished, or why not; stopped by a signal or the wall limit, it continues with --restart.
   const bool blowUp = !stop.empty() && !r.signal && !r.wallLimit;

@@ -15,6 +15,7 @@
 #include "app/presets_estimate.hpp"
 #include "app/simulation.hpp"
 #include "core/build_info.hpp"
+#include "core/host_access.hpp"
 #include "scene/load.hpp"
 #include "scene/reader.hpp"
 
@@ -183,6 +184,7 @@ int main(int argc, char** argv) {
     int kargc = int(kargv.size());
     kargv.push_back(nullptr);
     Kokkos::ScopeGuard kokkos(kargc, kargv.data());
+    host_access::armFromEnvironment(); // VOIGT_HOST_TOUCH_CHECK=1: core/host_access.hpp
     CLI::App app{"Voigt: fluids and elastic solids on one Eulerian grid"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("voigt ") + VOIGT_VERSION + " (" + buildRevision() + ")");

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/grid.hpp"
+#include "core/host_access.hpp"
 
 namespace voigt {
 
@@ -47,6 +48,11 @@ void FieldStore::allocate(const Grid& g) {
       vectors_[name] = v;
     }
   }
+  // Under the host-touch check every field's pages close outside kernels (host_access.hpp).
+  for (auto& [n, f] : scalars_) guard(f);
+  for (auto& [n, v] : vectors_)
+    for (const Field& f : v.c) guard(f);
+  for (auto& [n, f] : ints_) guard(f);
 }
 
 Field FieldStore::scalar(const std::string& name) const {

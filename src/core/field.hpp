@@ -23,7 +23,15 @@ namespace km = Kokkos::Experimental;
 // (15 calls per cell in the re-initialisation stage). They differ only when b is NaN.
 KOKKOS_INLINE_FUNCTION double maxOf(double a, double b) { return a > b ? a : b; }
 KOKKOS_INLINE_FUNCTION double minOf(double a, double b) { return a < b ? a : b; }
+// Fields live in device memory. Trilinos 13.2's Tpetra makes Kokkos::Cuda's default memory
+// space CudaUVMSpace (managed memory, pages that migrate when host code touches them), so a
+// CUDA build names CudaSpace; host code reaches fields only through toHost/toDevice
+// (core/host_access.hpp), and Tpetra's UVM views assign to CudaSpace views.
+#if defined(KOKKOS_ENABLE_CUDA)
+using MemSpace = Kokkos::CudaSpace;
+#else
 using MemSpace = ExecSpace::memory_space;
+#endif
 using Field = Kokkos::View<double***, Kokkos::LayoutLeft, MemSpace>;
 using IntField = Kokkos::View<int***, Kokkos::LayoutLeft, MemSpace>;
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "kernels/reductions.hpp"
 
@@ -138,8 +139,7 @@ std::string StepEngine::nonFinite(const std::vector<std::string>& names) const {
     const int gi = int(gfirst % nx), gj = int((gfirst / nx) % ny), gk = int(gfirst / (nx * ny));
     double v = 0;
     if (first == gfirst) {
-      auto h = Kokkos::create_mirror_view_and_copy(
-          Kokkos::HostSpace(), Kokkos::subview(f, g.local(0, gi), g.local(1, gj), g.local(2, gk)));
+      auto h = toHost(Kokkos::subview(f, g.local(0, gi), g.local(1, gj), g.local(2, gk)), "blow_up_report");
       v = h();
     }
     int mine = first == gfirst ? g.rank : g.size, owner = 0;

@@ -19,6 +19,7 @@
 
 #include "core/field_names.hpp"
 #include "core/halo.hpp"
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "effects/effect.hpp"
 #include "kernels/momentum.hpp"
@@ -76,10 +77,11 @@ class Gravity : public Effect {
     const int a = axis_, b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
     Field ph = st.fields.scalar(kHydrostatic), p = st.fields.scalar(field::pressure);
     Field target = p;
-    if (resync_) target = Field("hydrostatic_resync", gr.ext[0], gr.ext[1], gr.ext[2]);
+    if (resync_) guard(target = Field("hydrostatic_resync", gr.ext[0], gr.ext[1], gr.ext[2]));
     if (top_.extent(0) != size_t(gr.ln[b]) || top_.extent(1) != size_t(gr.ln[c])) {
       top_ = Plane("hydrostatic_top", gr.ln[b], gr.ln[c]);
       last_ = Plane("hydrostatic_last", gr.ln[b], gr.ln[c]);
+      guard(top_), guard(last_);
     }
     // The columns run from the top rank down, each rank after the one above it: the same
     // sums in the same order at any rank count (bit-identical results).
@@ -87,14 +89,14 @@ class Gravity : public Effect {
     const int above = down ? gr.nbrHi[a] : gr.nbrLo[a], below = down ? gr.nbrLo[a] : gr.nbrHi[a];
     const bool atTop = down ? gr.atHi(a) : gr.atLo(a);
     const int count = gr.ln[b] * gr.ln[c];
-    auto topH = Kokkos::create_mirror_view(top_);
     if (!atTop) {
+      auto topH = hostMirror(top_);
       MPI_Recv(topH.data(), count, MPI_DOUBLE, above, 71, gr.comm, MPI_STATUS_IGNORE);
-      Kokkos::deep_copy(top_, topH);
+      toDevice(top_, topH, "hydrostatic_columns");
     }
     hydrostaticShift(gr, a, g_[a], st.fields.scalar(field::density), ph, target, top_, atTop, last_);
     if (!(down ? gr.atLo(a) : gr.atHi(a))) {
-      auto lastH = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), last_);
+      auto lastH = toHost(last_, "hydrostatic_columns");
       MPI_Send(lastH.data(), count, MPI_DOUBLE, below, 71, gr.comm);
     }
     resync_ = false;

@@ -14,6 +14,7 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "core/host_access.hpp"
 #include "kernels/box_copy.hpp"
 
 namespace voigt::h5 {
@@ -115,8 +116,7 @@ void writeBox(hid_t file, hid_t dxpl, const Grid& g, const std::string& name, co
   const int lb[3] = {g.local(0, box.b[0]), g.local(1, box.b[1]), g.local(2, box.b[2])};
   const int le[3] = {g.local(0, box.e[0]), g.local(1, box.e[1]), g.local(2, box.e[2])};
   for (int c = 0; c < nc && !empty; ++c) copyBoxPacked<true>(comps[c], lb, le, buf, c);
-  auto host = Kokkos::create_mirror_view(buf);
-  Kokkos::deep_copy(host, buf);
+  auto host = toHost(buf, "hdf5_write");
 
   Id fspace(H5Screate_simple(rank, gdims, nullptr), H5Sclose, "H5Screate_simple", path);
   Id dset(H5Dcreate2(file, name.c_str(), fileType<T>(), fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
@@ -173,7 +173,7 @@ void readBox(hid_t file, hid_t dxpl, const Grid& g, const std::string& name, con
   }
   check(H5Dread(dset, memType<T>(), mspace, fspace, dxpl, host.data()), "read of '" + name + "'", path);
   if (empty) return;
-  Kokkos::deep_copy(buf, host);
+  toDevice(buf, host, "hdf5_read");
   const int lb[3] = {g.local(0, box.b[0]), g.local(1, box.b[1]), g.local(2, box.b[2])};
   const int le[3] = {g.local(0, box.e[0]), g.local(1, box.e[1]), g.local(2, box.e[2])};
   for (int c = 0; c < nc; ++c) copyBoxPacked<false>(comps[c], lb, le, buf, c);

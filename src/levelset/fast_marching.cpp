@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/host_access.hpp"
+
 namespace voigt {
 namespace {
 
@@ -253,7 +255,7 @@ FastMarchingStats fastMarching(const Grid& g, const Field& psi, double maxDistan
   const int ng = g.ng;
 
   // Pack the owned block (x fastest) from a host copy of psi.
-  auto hpsi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), psi);
+  auto hpsi = toHost(psi, "fast_marching");
   const int meta[6] = {g.c0[0], g.c0[1], g.c0[2], g.ln[0], g.ln[1], g.ln[2]};
   std::vector<double> block(size_t(g.cellsOwned()));
   for (int k = 0; k < g.ln[2]; ++k)
@@ -292,7 +294,7 @@ FastMarchingStats fastMarching(const Grid& g, const Field& psi, double maxDistan
   for (int k = 0; k < g.ln[2]; ++k)
     for (int j = 0; j < g.ln[1]; ++j)
       for (int i = 0; i < g.ln[0]; ++i) hpsi(ng + i, ng + j, ng + k) = block[i + size_t(g.ln[0]) * (j + size_t(g.ln[1]) * k)];
-  Kokkos::deep_copy(psi, hpsi);
+  toDevice(psi, hpsi, "fast_marching");
 
   FastMarchingStats st;
   st.initialCells = stats[0];

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/boundary.hpp"
+#include "core/host_access.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/reductions.hpp"
 
@@ -25,6 +26,7 @@ Reinitializer::Reinitializer(const Grid& g, ReinitParams p) : g_(&g), p_(p) {
   psiT_ = Field("reinit_psiT", g.ext[0], g.ext[1], g.ext[2]);
   dH_ = Field("reinit_dH", g.ext[0], g.ext[1], g.ext[2]);
   if (p_.volumeConstraint) gm_ = Field("reinit_grad_mag", g.ext[0], g.ext[1], g.ext[2]);
+  for (const Field& f : {psi1_, psiT_, dH_, gm_}) guard(f); // the host-touch check's too
   const size_t cap = size_t(g.cellsOwned());
   band_.cell = reinit::IntList("reinit_band", cap);
   band_.flags = reinit::IntList("reinit_flags", cap);

@@ -4,6 +4,8 @@
 // rank the moves between blocks, outer and inner slabs (fast_diagonalization.hpp).
 #include "solvers/fast_diagonalization.hpp"
 
+#include "core/host_access.hpp"
+
 #include <string>
 #include <type_traits>
 
@@ -46,12 +48,14 @@ void FastDiagonalization::allocate(Passes<T>& P) const {
     P.o2 = grid("o2", outer_);
     P.i1 = grid("i1", inner_);
     P.i2 = grid("i2", inner_);
-    P.oh = Kokkos::create_mirror_view(P.o1);
-    P.ih = Kokkos::create_mirror_view(P.i1);
+    for (const auto& v : {P.o1, P.o2, P.i1, P.i2}) guard(v);
+    P.oh = hostMirror(P.o1);
+    P.ih = hostMirror(P.i1);
     if (toMid_) {
       P.m1 = grid("m1", mid_);
       P.m2 = grid("m2", mid_);
-      P.mh = Kokkos::create_mirror_view(P.m1);
+      guard(P.m1), guard(P.m2);
+      P.mh = hostMirror(P.m1);
     }
     P.rowsH.resize(g_.cellsOwned());
   } else {
@@ -59,9 +63,11 @@ void FastDiagonalization::allocate(Passes<T>& P) const {
     P.o2 = grid("t2", outer_);
     P.i1 = P.o1;
     P.i2 = P.o2;
+    guard(P.o1), guard(P.o2);
   }
   P.r = Rows<T>(std::string(tag) + "rows_in", g_.cellsOwned());
   P.x = Rows<T>(std::string(tag) + "rows_out", g_.cellsOwned());
+  guard(P.r), guard(P.x);
 }
 
 template <class T>
@@ -178,35 +184,41 @@ void FastDiagonalization::run(const Passes<T>& P, const Kokkos::View<const T*, K
   // Rows are this rank's block, i fastest: the block layout Redistribute expects.
   const Kokkos::View<T*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> rh(P.rowsH.data(),
                                                                                            P.rowsH.size());
-  Kokkos::deep_copy(rh, r);
+  // Every move goes through host memory (MPI here is not device-aware): on a device each
+  // deep_copy below crosses the bus; counted as what it would move.
+  auto stage = [](const auto& dst, const auto& src) {
+    host_access::countCopy("fd_transpose_staging", dst.span() * sizeof(T));
+    Kokkos::deep_copy(dst, src);
+  };
+  stage(rh, r);
   toOuter_->forward(P.rowsH.data(), P.oh.data());
-  Kokkos::deep_copy(P.o1, P.oh);
+  stage(P.o1, P.oh);
   chain(P.fwd, CGrid3Of<T>(P.o1), P.o2, P.o1, P.o2);
-  Kokkos::deep_copy(P.oh, P.o2);
+  stage(P.oh, P.o2);
   if (toMid_) { // x pencils -> c pencils, the c transform
     toMid_->forward(P.oh.data(), P.mh.data());
-    Kokkos::deep_copy(P.m1, P.mh);
+    stage(P.m1, P.mh);
     chain(P.mid, CGrid3Of<T>(P.m1), P.m2, P.m1, P.m2);
-    Kokkos::deep_copy(P.mh, P.m2);
+    stage(P.mh, P.m2);
   }
   toInner_->forward(toMid_ ? P.mh.data() : P.oh.data(), P.ih.data());
-  Kokkos::deep_copy(P.i1, P.ih);
+  stage(P.i1, P.ih);
   chain(P.inner, CGrid3Of<T>(P.i1), P.i2, P.i1, P.i2);
-  Kokkos::deep_copy(P.ih, P.i2);
+  stage(P.ih, P.i2);
   if (toMid_) {
     toInner_->backward(P.ih.data(), P.mh.data());
-    Kokkos::deep_copy(P.m1, P.mh);
+    stage(P.m1, P.mh);
     chain(P.midBack, CGrid3Of<T>(P.m1), P.m2, P.m1, P.m2);
-    Kokkos::deep_copy(P.mh, P.m2);
+    stage(P.mh, P.m2);
     toMid_->backward(P.mh.data(), P.oh.data());
   } else {
     toInner_->backward(P.ih.data(), P.oh.data());
   }
-  Kokkos::deep_copy(P.o1, P.oh);
+  stage(P.o1, P.oh);
   chain(P.back, CGrid3Of<T>(P.o1), P.o2, P.o1, P.o2);
-  Kokkos::deep_copy(P.oh, P.o2);
+  stage(P.oh, P.o2);
   toOuter_->backward(P.oh.data(), P.rowsH.data());
-  Kokkos::deep_copy(z, rh);
+  stage(z, rh);
 }
 
 std::array<long long, 2> FastDiagonalization::traffic() const {

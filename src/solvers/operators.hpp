@@ -2,6 +2,7 @@
 // Small Tpetra operators the Poisson solver hands to Belos. Include only from
 // src/solvers/*.cpp (Trilinos headers).
 #include "core/halo.hpp"
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "kernels/fast_diag.hpp"
 #include "kernels/poisson_apply.hpp"
@@ -80,7 +81,9 @@ struct MatrixFreeOperator final : Operator {
       corners.e[d] += 1; // every corner node of an owned cell
       s.c[d] = Field("mf_scale", g.ext[0], g.ext[1], g.ext[2]);
       q.c[d] = Field("mf_flux", g.ext[0], g.ext[1], g.ext[2]);
+      guard(s.c[d]), guard(q.c[d]);
     }
+    guard(x);
   }
   // coef valid at every corner node of every owned cell (PoissonSolver::setCoefficients).
   void setCoefficients(const VecField& coef) { poissonNodeScale(g, coef, s, corners); }

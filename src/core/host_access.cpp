@@ -1,0 +1,161 @@
+// The host-touch check and the copy counters: see host_access.hpp.
+#include "core/host_access.hpp"
+
+#include <execinfo.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+namespace voigt::host_access {
+
+namespace {
+
+struct Region {
+  char name[64];
+  const char* data;  // the field's first element
+  std::size_t bytes; // its span
+  char* lo;          // the whole pages inside [data, data + bytes): what is protected
+  char* hi;
+};
+
+// Single-threaded by construction (Serial backend; the check is for that build).
+std::vector<Region> regions;
+bool isArmed = false;
+int depth = 0; // kernels and deep copies in flight (they nest: deep_copy runs a kernel)
+long long nKernels = 0, nDeepCopies = 0;
+std::map<std::string, Copies> copyCounts;
+
+void setAccess(const Region& r, bool open) {
+  if (r.hi > r.lo) mprotect(r.lo, std::size_t(r.hi - r.lo), open ? PROT_READ | PROT_WRITE : PROT_NONE);
+}
+
+void enter() {
+  if (depth++ == 0)
+    for (const Region& r : regions) setAccess(r, true);
+}
+
+void leave() {
+  if (depth > 0 && --depth == 0)
+    for (const Region& r : regions) setAccess(r, false);
+}
+
+void beginKernel(const char*, const uint32_t, uint64_t*) {
+  ++nKernels;
+  enter();
+}
+void endKernel(uint64_t) { leave(); }
+void beginCopy(Kokkos_Profiling_SpaceHandle, const char*, const void*, Kokkos_Profiling_SpaceHandle, const char*,
+               const void*, uint64_t) {
+  ++nDeepCopies;
+  enter();
+}
+void endCopy() { leave(); }
+
+// Kokkos reports the allocation's start (its header) or its data: either way a field's data
+// lies within a header's length of [ptr, ptr + size].
+void deallocated(Kokkos_Profiling_SpaceHandle, const char*, const void* ptr, uint64_t size) {
+  const char* p = static_cast<const char*>(ptr);
+  for (std::size_t i = 0; i < regions.size();) {
+    if (regions[i].data >= p && regions[i].data <= p + size + 256) {
+      setAccess(regions[i], true);
+      regions.erase(regions.begin() + long(i));
+    } else {
+      ++i;
+    }
+  }
+}
+
+void say(const char* s) {
+  ssize_t ignored = write(STDERR_FILENO, s, std::strlen(s));
+  (void)ignored;
+}
+
+void onFault(int sig, siginfo_t* info, void*) {
+  const char* a = static_cast<const char*>(info->si_addr);
+  for (const Region& r : regions) {
+    if (a < r.lo || a >= r.hi) continue;
+    say("voigt: host-touch check: host code touched field '");
+    say(r.name);
+    say("' outside a Kokkos kernel, a deep_copy or toHost/toDevice (core/host_access.hpp); on a "
+        "device this is a fault or a silent page migration. Backtrace (addr2line -Cfe PROGRAM +OFFSET "
+        "names a frame):\n");
+    void* frames[64];
+    backtrace_symbols_fd(frames, backtrace(frames, 64), STDERR_FILENO);
+    _exit(kHostTouchExit);
+  }
+  signal(sig, SIG_DFL); // not ours: fault again, the default way
+}
+
+} // namespace
+
+void arm() {
+  if (isArmed) return;
+  isArmed = true;
+  namespace kt = Kokkos::Tools::Experimental;
+  kt::set_begin_parallel_for_callback(beginKernel);
+  kt::set_end_parallel_for_callback(endKernel);
+  kt::set_begin_parallel_reduce_callback(beginKernel);
+  kt::set_end_parallel_reduce_callback(endKernel);
+  kt::set_begin_parallel_scan_callback(beginKernel);
+  kt::set_end_parallel_scan_callback(endKernel);
+  kt::set_begin_deep_copy_callback(beginCopy);
+  kt::set_end_deep_copy_callback(endCopy);
+  kt::set_deallocate_data_callback(deallocated);
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof sa);
+  sa.sa_sigaction = onFault;
+  sa.sa_flags = SA_SIGINFO;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGSEGV, &sa, nullptr);
+  sigaction(SIGBUS, &sa, nullptr);
+}
+
+bool armed() { return isArmed; }
+
+bool armFromEnvironment() {
+  const char* v = std::getenv("VOIGT_HOST_TOUCH_CHECK");
+  if (v && *v && std::strcmp(v, "0") != 0) arm();
+  return isArmed;
+}
+
+void registerField(const std::string& name, const void* data, std::size_t bytes) {
+  if (!isArmed || !data || bytes == 0 || isField(data)) return;
+  const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t b = std::uintptr_t(data), e = b + bytes;
+  Region r{};
+  std::strncpy(r.name, name.c_str(), sizeof r.name - 1);
+  r.data = static_cast<const char*>(data);
+  r.bytes = bytes;
+  r.lo = reinterpret_cast<char*>((b + page - 1) / page * page);
+  r.hi = reinterpret_cast<char*>(e / page * page);
+  if (r.hi <= r.lo) return; // smaller than a page: nothing of its own to protect
+  regions.push_back(r);
+  if (depth == 0) setAccess(regions.back(), false);
+}
+
+bool isField(const void* data) {
+  for (const Region& r : regions)
+    if (static_cast<const char*>(data) >= r.data && static_cast<const char*>(data) < r.data + r.bytes) return true;
+  return false;
+}
+
+const std::map<std::string, Copies>& copies() { return copyCounts; }
+long long kernels() { return nKernels; }
+long long deepCopies() { return nDeepCopies; }
+void reset() {
+  copyCounts.clear();
+  nKernels = nDeepCopies = 0;
+}
+
+void countCopy(const char* why, std::size_t bytes) {
+  Copies& c = copyCounts[why];
+  ++c.count;
+  c.bytes += (long long)bytes;
+}
+
+} // namespace voigt::host_access
