@@ -10,6 +10,7 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "kernels/fast_diag.hpp"
 #include "kernels/reinit.hpp"
@@ -65,10 +66,10 @@ inline Field mk(const Grid& g, const char* name) { return Field(std::string(name
 // A dense n x n test matrix for the fast-diagonalization passes (not orthogonal: a checksum).
 inline Dense denseOf(int n) {
   Dense V("V", n, n);
-  auto h = Kokkos::create_mirror_view(V);
+  auto h = hostMirror(V); // core/host_access.hpp, compiled for the device here too
   for (int i = 0; i < n; ++i)
     for (int a = 0; a < n; ++a) h(i, a) = std::cos(0.1 * (i + 1) * (a + 1)) / n;
-  Kokkos::deep_copy(V, h);
+  toDevice(V, h, "test_matrix");
   return V;
 }
 
