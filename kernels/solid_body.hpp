@@ -12,6 +12,7 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "kernels/heaviside.hpp"
 #include "kernels/reductions.hpp" // AccReducer
@@ -155,10 +156,9 @@ inline double solidBending(const Grid& g, const Field& psi, double kappa, double
       });
   auto sums = bins; // contribute takes a non-const view
   Kokkos::Experimental::contribute(sums, sv);
-  auto hb = Kokkos::create_mirror_view(bins);
-  Kokkos::deep_copy(hb, bins);
+  auto hb = toHost(bins, "solid_body_columns");
   MPI_Allreduce(MPI_IN_PLACE, hb.data(), int(hb.size()), MPI_DOUBLE, MPI_SUM, g.comm);
-  Kokkos::deep_copy(bins, hb);
+  toDevice(bins, hb, "solid_body_columns");
   // Normal equations of the least-squares plane s = p0 + p1 a + p2 b over the columns.
   SolidAcc fit;
   const auto cols = Kokkos::RangePolicy<ExecSpace>(0, nb * nb);

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/host_access.hpp"
+
 namespace voigt {
 
 namespace {
@@ -144,8 +146,7 @@ void ProbeSet::sample(double t, const std::vector<OutField>& available, bool for
       const int o = f->centring == Centring::Node ? 0 : 3;
       for (const Field& v : f->comps) sampleProbes(v, idx, w, o, nl, res, col++);
     }
-    auto hres = Kokkos::create_mirror_view(res);
-    Kokkos::deep_copy(hres, res);
+    auto hres = toHost(res, "probes");
 
     // Each point has exactly one owner, so a sum over ranks gathers it.
     const int np = int(s.pts.size());
