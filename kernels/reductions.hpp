@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/field.hpp"
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "kernels/projection_ops.hpp"
 
@@ -155,8 +156,8 @@ inline ArrayBoxes arrayBoxes(const std::vector<Field>& fs, const std::vector<Ran
   a.n = int(fs.size());
   a.ptr = Kokkos::View<std::uintptr_t*, MemSpace>("nonfinite::ptr", a.n);
   a.box = Kokkos::View<int* [6], MemSpace>("nonfinite::box", a.n);
-  auto hp = Kokkos::create_mirror_view(a.ptr);
-  auto hb = Kokkos::create_mirror_view(a.box);
+  auto hp = hostMirror(a.ptr);
+  auto hb = hostMirror(a.box);
   for (int q = 0; q < a.n; ++q) {
     if (q == 0) a.sj = fs[0].stride(1), a.sk = fs[0].stride(2);
     if (fs[q].stride(0) != 1 || (long long)fs[q].stride(1) != a.sj || (long long)fs[q].stride(2) != a.sk)
@@ -169,8 +170,8 @@ inline ArrayBoxes arrayBoxes(const std::vector<Field>& fs, const std::vector<Ran
       a.hi[d] = q ? std::max(a.hi[d], rs[q].e[d]) : rs[q].e[d];
     }
   }
-  Kokkos::deep_copy(a.ptr, hp);
-  Kokkos::deep_copy(a.box, hb);
+  toDevice(a.ptr, hp, "setup");
+  toDevice(a.box, hb, "setup");
   return a;
 }
 

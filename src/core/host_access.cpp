@@ -21,6 +21,7 @@ struct Region {
   std::size_t bytes; // its span
   char* lo;          // the whole pages inside [data, data + bytes): what is protected
   char* hi;
+  bool open;         // opened by a kernel's first touch; closed when the last kernel ends
 };
 
 // Single-threaded by construction (Serial backend; the check is for that build).
@@ -34,14 +35,15 @@ void setAccess(const Region& r, bool open) {
   if (r.hi > r.lo) mprotect(r.lo, std::size_t(r.hi - r.lo), open ? PROT_READ | PROT_WRITE : PROT_NONE);
 }
 
-void enter() {
-  if (depth++ == 0)
-    for (const Region& r : regions) setAccess(r, true);
-}
+// Regions open lazily: a kernel's first touch of a closed one faults, and the handler opens
+// it (onFault); the last kernel to end closes what was opened. A kernel touches a few fields,
+// so this costs a few mprotect calls a kernel instead of two per registered array.
+void enter() { ++depth; }
 
 void leave() {
   if (depth > 0 && --depth == 0)
-    for (const Region& r : regions) setAccess(r, false);
+    for (Region& r : regions)
+      if (r.open) setAccess(r, false), r.open = false;
 }
 
 void beginKernel(const char*, const uint32_t, uint64_t*) {
@@ -62,7 +64,7 @@ void deallocated(Kokkos_Profiling_SpaceHandle, const char*, const void* ptr, uin
   const char* p = static_cast<const char*>(ptr);
   for (std::size_t i = 0; i < regions.size();) {
     if (regions[i].data >= p && regions[i].data <= p + size + 256) {
-      setAccess(regions[i], true);
+      if (!regions[i].open) setAccess(regions[i], true);
       regions.erase(regions.begin() + long(i));
     } else {
       ++i;
@@ -77,8 +79,13 @@ void say(const char* s) {
 
 void onFault(int sig, siginfo_t* info, void*) {
   const char* a = static_cast<const char*>(info->si_addr);
-  for (const Region& r : regions) {
+  for (Region& r : regions) {
     if (a < r.lo || a >= r.hi) continue;
+    if (depth > 0) { // inside a kernel or a deep copy: open it and retry the access
+      setAccess(r, true);
+      r.open = true;
+      return;
+    }
     say("voigt: host-touch check: host code touched field '");
     say(r.name);
     say("' outside a Kokkos kernel, a deep_copy or toHost/toDevice (core/host_access.hpp); on a "
@@ -134,8 +141,9 @@ void registerField(const std::string& name, const void* data, std::size_t bytes)
   r.lo = reinterpret_cast<char*>((b + page - 1) / page * page);
   r.hi = reinterpret_cast<char*>(e / page * page);
   if (r.hi <= r.lo) return; // smaller than a page: nothing of its own to protect
+  r.open = depth > 0; // registered inside a kernel: leave() closes it
   regions.push_back(r);
-  if (depth == 0) setAccess(regions.back(), false);
+  if (!r.open) setAccess(regions.back(), false);
 }
 
 bool isField(const void* data) {

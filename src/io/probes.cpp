@@ -86,14 +86,14 @@ ProbeSet::ProbeSet(const Grid& g, const std::vector<Probe>& probes, std::string 
     const int nl = int(s.local.size());
     s.idx = IdxView("probe::idx", nl);
     s.w = WView("probe::w", nl);
-    auto hi = Kokkos::create_mirror_view(s.idx);
-    auto hw = Kokkos::create_mirror_view(s.w);
+    auto hi = hostMirror(s.idx);
+    auto hw = hostMirror(s.w);
     for (int p2 = 0; p2 < nl; ++p2) {
       for (int c = 0; c < 9; ++c) hi(p2, c) = idx[p2][c];
       for (int c = 0; c < 6; ++c) hw(p2, c) = w[p2][c];
     }
-    Kokkos::deep_copy(s.idx, hi);
-    Kokkos::deep_copy(s.w, hw);
+    toDevice(s.idx, hi, "setup");
+    toDevice(s.w, hw, "setup");
 
     if (g.rank == 0 && ok) {
       const std::string path = dir_ + "/probe_" + p.name + ".csv";

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/host_access.hpp"
+
 namespace voigt {
 
 namespace {
@@ -191,9 +193,9 @@ void FastDiagonalization::findSingularLines(const Kokkos::View<double* [3], MemS
     }
   const int nl = (int)found.size() / 2;
   lines_ = Lines2("fd_singular_lines", nl);
-  auto h = Kokkos::create_mirror_view(lines_);
+  auto h = hostMirror(lines_);
   for (int l = 0; l < nl; ++l) h(l, 0) = found[2 * l], h(l, 1) = found[2 * l + 1];
-  Kokkos::deep_copy(lines_, h);
+  toDevice(lines_, h, "solver_setup");
   lineWork_ = Kokkos::View<double**, Kokkos::LayoutRight, MemSpace>("fd_line_work", nl, 3 * n_[s_]);
 }
 
@@ -214,7 +216,7 @@ void FastDiagonalization::setup(const VecField& coef) {
     }
   // Every rank builds the 1-D factors (small dense eigenproblems, identical everywhere).
   Kokkos::View<double* [3], MemSpace> lam("fd_lambda", std::max(n_[0], std::max(n_[1], n_[2])));
-  auto lamH = Kokkos::create_mirror_view(lam);
+  auto lamH = hostMirror(lam);
   std::vector<double> l[3];
   for (int e = 0; e < 3; ++e) {
     const int n = n_[e];
@@ -222,10 +224,10 @@ void FastDiagonalization::setup(const VecField& coef) {
     axisFactors(n, g.periodic[e], keepK_[e], keepM_[e], V, l[e], tri);
     if (e == s_) { // the solve axis: its tridiagonal factors; not folded (its V serves the singular lines)
       tri_ = Table4("fd_tri", n, 4);
-      auto th = Kokkos::create_mirror_view(tri_);
+      auto th = hostMirror(tri_);
       for (int c = 0; c < 4; ++c)
         for (int q = 0; q < n; ++q) th(q, c) = tri[c * n + q];
-      Kokkos::deep_copy(tri_, th);
+      toDevice(tri_, th, "solver_setup");
     }
     // A mirror-symmetric axis (both faces of one kind) has even and odd eigenvectors: fold
     // it (fdFold) and keep V block diagonal, even modes first, to halve the transform.
@@ -254,7 +256,7 @@ void FastDiagonalization::setup(const VecField& coef) {
       }
     }
     V_[e] = Dense("fd_V", n, n);
-    auto vh = Kokkos::create_mirror_view(V_[e]);
+    auto vh = hostMirror(V_[e]);
     Kokkos::deep_copy(vh, 0.0);
     const int h = nb_[e];
     for (int c = 0; c < n; ++c) {
@@ -267,17 +269,17 @@ void FastDiagonalization::setup(const VecField& coef) {
         for (int q = 0; q < n / 2; ++q) vh(h + q, c) = V[q + n * a];
       }
     }
-    Kokkos::deep_copy(V_[e], vh);
+    toDevice(V_[e], vh, "solver_setup");
     std::vector<double> lo(n);
     for (int c = 0; c < n; ++c) lo[c] = l[e][order[c]];
     l[e] = lo;
     for (int a = 0; a < n; ++a) lamH(a, e) = l[e][a];
     lam_[e] = Table("fd_lambda_axis", n);
-    auto th = Kokkos::create_mirror_view(lam_[e]);
+    auto th = hostMirror(lam_[e]);
     for (int a = 0; a < n; ++a) th(a) = l[e][a];
-    Kokkos::deep_copy(lam_[e], th);
+    toDevice(lam_[e], th, "solver_setup");
   }
-  Kokkos::deep_copy(lam, lamH);
+  toDevice(lam, lamH, "solver_setup");
   // Null modes of A0 (eigenvalue 0 up to round-off) get 0: A's own null space is removed
   // by the caller (ProjectedPrec), and a mode A0 lacks is never in range(A) exactly. The
   // largest eigenvalue is the largest of each 1-D factor's products (all factors >= 0).

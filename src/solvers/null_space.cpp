@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/host_access.hpp"
+
 namespace voigt {
 namespace {
 
@@ -58,9 +60,9 @@ void NullSpace::synthesize(const double* a, const RowVector& v, bool subtract) c
     nullSynthesizeConstant(a[0], v, ident_, nrows_, subtract);
     return;
   }
-  auto ha = Kokkos::create_mirror_view(coef_);
+  auto ha = hostMirror(coef_);
   for (int m = 0; m < nb_; ++m) ha(m) = a[m];
-  Kokkos::deep_copy(coef_, ha);
+  toDevice(coef_, ha, "null_space");
   nullSynthesize(basis(), coef_, v, ident_, nrows_, subtract);
 }
 
@@ -82,7 +84,7 @@ void NullSpace::rebuild(const RowFlags& ident, const Apply& apply, double scale)
   // Gram of the basis, Gm = M^T M: each live row is in 4 basis modes.
   std::vector<double> Gm((size_t)nb * nb, 0.0);
   {
-    auto hid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ident);
+    auto hid = toHost(ident, "solver_setup");
     const NullBasis B = basis();
     for (int r = 0; r < nrows_; ++r) {
       if (hid(r)) continue;

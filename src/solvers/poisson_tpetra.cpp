@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/host_access.hpp"
 #include "core/index_space.hpp"
 #include "kernels/poisson_assembly.hpp"
 #include "kernels/poisson_rows.hpp"
@@ -240,7 +241,7 @@ class TpetraPoisson final : public PoissonSolver {
     }
     graph_->fillComplete();
     slot_ = SlotView("poisson_slots", nrows_, kStencil);
-    auto hs = Kokkos::create_mirror_view(slot_);
+    auto hs = hostMirror(slot_);
     auto lg = graph_->getLocalGraphHost();
     auto colMap = graph_->getColMap();
     for (int r = 0; r < nrows_; ++r) {
@@ -256,7 +257,7 @@ class TpetraPoisson final : public PoissonSolver {
           if (lg.entries(p) == lc) hs(r, o) = (int)p;
       }
     }
-    Kokkos::deep_copy(slot_, hs);
+    toDevice(slot_, hs, "solver_setup");
   }
 
   // Values from coef (assemblePoisson); sets anorm_ = ||A||_inf and returns whether the

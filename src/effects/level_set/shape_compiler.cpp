@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/host_access.hpp"
+
 namespace voigt {
 
 namespace {
@@ -154,14 +156,14 @@ ShapeProgram compileShape(const Section& parent, const std::string& key, const S
   p.text = c.compile(parent.section(key), 0);
   if (c.maxDepth > kShapeStack) parent.fail(key, "the shape needs too many simultaneous operands (max 32)");
   p.ops = Kokkos::View<ShapeOp*, MemSpace>("shape_ops", c.ops.size());
-  auto ho = Kokkos::create_mirror_view(p.ops);
+  auto ho = hostMirror(p.ops);
   for (size_t i = 0; i < c.ops.size(); ++i) ho(i) = c.ops[i];
-  Kokkos::deep_copy(p.ops, ho);
+  toDevice(p.ops, ho, "setup");
   p.spheres = Kokkos::View<double* [4], MemSpace>("shape_spheres", c.spheres.size());
-  auto hs = Kokkos::create_mirror_view(p.spheres);
+  auto hs = hostMirror(p.spheres);
   for (size_t i = 0; i < c.spheres.size(); ++i)
     for (int q = 0; q < 4; ++q) hs(i, q) = c.spheres[i][q];
-  Kokkos::deep_copy(p.spheres, hs);
+  toDevice(p.spheres, hs, "setup");
   p.sphereCount = (long long)c.spheres.size();
   auto exact = [](ShapeKind k) {
     return k == ShapeKind::Sphere || k == ShapeKind::Box || k == ShapeKind::Plane || k == ShapeKind::Cylinder;
