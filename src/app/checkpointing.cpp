@@ -269,8 +269,15 @@ void Simulation::writeSummary(const RunResult& r, const std::string& stop) {
   nlohmann::json hc = nlohmann::json::object();
   for (const auto& [why, c] : host_access::copies()) hc[why] = {{"count", c.count}, {"bytes", c.bytes}};
   j["host_copies"] = hc;
-  if (host_access::armed()) // VOIGT_HOST_TOUCH_CHECK: it ran and nothing touched a field
-    j["host_touch_check"] = {{"kernels", host_access::kernels()}, {"deep_copies", host_access::deepCopies()}};
+  if (host_access::armed()) { // VOIGT_HOST_TOUCH_CHECK: it ran and nothing touched a field
+    nlohmann::json& h = j["host_touch_check"];
+    h = {{"kernels", host_access::kernels()}, {"deep_copies", host_access::deepCopies()}};
+    for (const auto& [stage, w] : host_access::stageWork()) {
+      nlohmann::json& o = h["per_stage"][stage.empty() ? "between_stages" : stage];
+      o["kernels"] = w.kernels;
+      if (host_access::countsPages()) o["bytes_touched"] = w.bytes;
+    }
+  }
   if (!stop.empty()) j["stopped"] = stop;
   // finished, or why not; stopped by a signal or the wall limit, it continues with --restart.
   const bool blowUp = !stop.empty() && !r.signal && !r.wallLimit;

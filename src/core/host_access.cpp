@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -26,10 +27,16 @@ struct Region {
 
 // Single-threaded by construction (Serial backend; the check is for that build).
 std::vector<Region> regions;
-bool isArmed = false;
+bool isArmed = false, pages = false;
 int depth = 0; // kernels and deep copies in flight (they nest: deep_copy runs a kernel)
 long long nKernels = 0, nDeepCopies = 0;
 std::map<std::string, Copies> copyCounts;
+std::map<std::string, StageWork> work; // by pipeline stage; "" between stages
+StageWork* current = nullptr;           // work[stage]
+// Page mode: the pages a top-level kernel opened (reserved at arm(): the fault handler
+// must not allocate); at its end they are counted and closed.
+std::vector<char*> openPages;
+std::size_t pageSize = 4096;
 
 void setAccess(const Region& r, bool open) {
   if (r.hi > r.lo) mprotect(r.lo, std::size_t(r.hi - r.lo), open ? PROT_READ | PROT_WRITE : PROT_NONE);
@@ -41,13 +48,24 @@ void setAccess(const Region& r, bool open) {
 void enter() { ++depth; }
 
 void leave() {
-  if (depth > 0 && --depth == 0)
-    for (Region& r : regions)
-      if (r.open) setAccess(r, false), r.open = false;
+  if (depth <= 0 || --depth > 0) return;
+  for (Region& r : regions)
+    if (r.open) setAccess(r, false), r.open = false;
+  if (openPages.empty()) return;
+  current->bytes += (long long)(openPages.size() * pageSize);
+  std::sort(openPages.begin(), openPages.end());
+  for (std::size_t i = 0; i < openPages.size();) { // close runs of adjacent pages at once
+    std::size_t j = i + 1;
+    while (j < openPages.size() && openPages[j] == openPages[j - 1] + pageSize) ++j;
+    mprotect(openPages[i], (j - i) * pageSize, PROT_NONE);
+    i = j;
+  }
+  openPages.clear();
 }
 
 void beginKernel(const char*, const uint32_t, uint64_t*) {
   ++nKernels;
+  if (depth == 0) ++current->kernels;
   enter();
 }
 void endKernel(uint64_t) { leave(); }
@@ -64,7 +82,11 @@ void deallocated(Kokkos_Profiling_SpaceHandle, const char*, const void* ptr, uin
   const char* p = static_cast<const char*>(ptr);
   for (std::size_t i = 0; i < regions.size();) {
     if (regions[i].data >= p && regions[i].data <= p + size + 256) {
-      if (!regions[i].open) setAccess(regions[i], true);
+      const Region& r = regions[i];
+      if (!r.open) setAccess(r, true);
+      openPages.erase(std::remove_if(openPages.begin(), openPages.end(),
+                                     [&](char* q) { return q >= r.lo && q < r.hi; }),
+                      openPages.end()); // never close pages the allocator gets back
       regions.erase(regions.begin() + long(i));
     } else {
       ++i;
@@ -81,9 +103,15 @@ void onFault(int sig, siginfo_t* info, void*) {
   const char* a = static_cast<const char*>(info->si_addr);
   for (Region& r : regions) {
     if (a < r.lo || a >= r.hi) continue;
-    if (depth > 0) { // inside a kernel or a deep copy: open it and retry the access
-      setAccess(r, true);
-      r.open = true;
+    if (depth > 0) { // inside a kernel or a deep copy: open it (or the page) and retry
+      if (pages && openPages.size() < openPages.capacity()) {
+        char* page = r.lo + std::size_t(a - r.lo) / pageSize * pageSize;
+        mprotect(page, pageSize, PROT_READ | PROT_WRITE);
+        openPages.push_back(page);
+      } else {
+        setAccess(r, true);
+        r.open = true;
+      }
       return;
     }
     say("voigt: host-touch check: host code touched field '");
@@ -100,9 +128,13 @@ void onFault(int sig, siginfo_t* info, void*) {
 
 } // namespace
 
-void arm() {
+void arm(bool countPages) {
   if (isArmed) return;
   isArmed = true;
+  pages = countPages;
+  pageSize = std::size_t(sysconf(_SC_PAGESIZE));
+  openPages.reserve(1 << 20);
+  current = &work[""];
   namespace kt = Kokkos::Tools::Experimental;
   kt::set_begin_parallel_for_callback(beginKernel);
   kt::set_end_parallel_for_callback(endKernel);
@@ -126,13 +158,13 @@ bool armed() { return isArmed; }
 
 bool armFromEnvironment() {
   const char* v = std::getenv("VOIGT_HOST_TOUCH_CHECK");
-  if (v && *v && std::strcmp(v, "0") != 0) arm();
+  if (v && *v && std::strcmp(v, "0") != 0) arm(std::strcmp(v, "pages") == 0);
   return isArmed;
 }
 
 void registerField(const std::string& name, const void* data, std::size_t bytes) {
   if (!isArmed || !data || bytes == 0 || isField(data)) return;
-  const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t page = std::uintptr_t(pageSize);
   const std::uintptr_t b = std::uintptr_t(data), e = b + bytes;
   Region r{};
   std::strncpy(r.name, name.c_str(), sizeof r.name - 1);
@@ -153,11 +185,18 @@ bool isField(const void* data) {
 }
 
 const std::map<std::string, Copies>& copies() { return copyCounts; }
+const std::map<std::string, StageWork>& stageWork() { return work; }
+bool countsPages() { return pages; }
+void setStage(const std::string& stage) {
+  if (isArmed) current = &work[stage];
+}
 long long kernels() { return nKernels; }
 long long deepCopies() { return nDeepCopies; }
 void reset() {
   copyCounts.clear();
   nKernels = nDeepCopies = 0;
+  work.clear();
+  current = &work[""];
 }
 
 void countCopy(const char* why, std::size_t bytes) {

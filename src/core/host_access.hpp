@@ -8,12 +8,19 @@
 // (summary.json "host_copies"), so a run shows what crosses the bus and how often.
 //
 // The host-touch check (VOIGT_HOST_TOUCH_CHECK=1, or arm()) makes the Serial build behave
-// as if fields lived in device memory: every FieldStore field's pages are mprotect-ed
-// PROT_NONE except while a Kokkos kernel (parallel_for/reduce/scan) or a deep_copy runs,
-// which Kokkos Tools callbacks report; toHost/toDevice make real copies. Host code that
-// dereferences a field anywhere else faults, and the handler names the field and prints a
-// backtrace before the process exits with kHostTouchExit. The pages at the two ends of a
-// field that it shares with other data stay open (at most 4 KiB each end).
+// as if fields lived in device memory: the pages of every FieldStore field and guard()-ed
+// device array are mprotect-ed PROT_NONE; while a Kokkos kernel (parallel_for/reduce/scan)
+// or a deep_copy runs (Kokkos Tools callbacks say when), a touch opens the array until the
+// kernel ends; toHost/toDevice make real copies. Host code that dereferences one anywhere
+// else faults, and the handler names it and prints a backtrace before the process exits
+// with kHostTouchExit. The pages at the two ends of an array that it shares with other data
+// stay open (at most 4 KiB each end).
+//
+// VOIGT_HOST_TOUCH_CHECK=pages opens single pages instead of whole arrays and counts, per
+// pipeline stage, the pages each kernel touched (summary.json host_touch_check.per_stage):
+// the bytes the stage's kernels stream through memory, counted at 4 KiB granularity (read
+// and written alike, each page once a kernel), for the arrays Voigt owns (not Tpetra's or
+// Belos' vectors). Slow (a fault per page per kernel): small grids, a few steps.
 #include <Kokkos_Core.hpp>
 
 #include <cstddef>
@@ -27,8 +34,9 @@ namespace host_access {
 constexpr int kHostTouchExit = 86;
 
 // Turns the check on (idempotent): Kokkos must be initialised. Fields allocated before
-// this are not protected.
-void arm();
+// this are not protected. countPages: the page mode above.
+void arm(bool countPages = false);
+bool countsPages();
 bool armed();
 // arm() if VOIGT_HOST_TOUCH_CHECK is set to anything but "" or "0"; returns armed().
 bool armFromEnvironment();
@@ -47,6 +55,14 @@ const std::map<std::string, Copies>& copies();
 long long kernels();
 long long deepCopies();
 void reset();
+
+// Kernels launched (top level) and, in page mode, bytes touched, per pipeline stage
+// (Pipeline::run names the stage; "" is everything between stages: setup, output, checks).
+struct StageWork {
+  long long kernels = 0, bytes = 0;
+};
+void setStage(const std::string& stage);
+const std::map<std::string, StageWork>& stageWork();
 
 void countCopy(const char* why, std::size_t bytes);
 

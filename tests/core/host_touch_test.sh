@@ -84,5 +84,18 @@ print(' '.join(k for k in c if k not in ('fast_marching', 'solid_body_columns', 
 " "$WORK/quiet/summary.json")
   [ -z "$other" ] || fail "one rank, output off: copies for '$other'"
   echo "ok one rank, output off: $(json "$WORK/quiet/summary.json" "['host_copies']")"
+  # Page mode (perf/portability/stage_work.py): the same kernels per stage, and every stage
+  # that launched a kernel touched memory.
+  VOIGT_HOST_TOUCH_CHECK=pages run "$WORK/pages.log" run "$SRC/cases/falling_block/falling_block.yaml" -o "$WORK/pages" \
+    --set "domain.cells=[16,16,8]" --set output.enabled=false --set "probes=[]" --steps 4
+  [ "$RC" -eq 0 ] || fail "page mode: exit code $RC"
+  python3 - "$WORK/quiet/summary.json" "$WORK/pages/summary.json" <<'PY' || fail "page mode: counts disagree"
+import json, sys
+a, b = (json.load(open(f))["host_touch_check"]["per_stage"] for f in sys.argv[1:])
+assert {k: v["kernels"] for k, v in a.items()} == {k: v["kernels"] for k, v in b.items()}, (a, b)
+assert all(v["bytes_touched"] > 0 for v in b.values() if v["kernels"] > 0), b
+assert all("bytes_touched" not in v for v in a.values()), a
+PY
+  echo "ok page mode: $(json "$WORK/pages/summary.json" "['host_touch_check']['per_stage']['projection']")"
 fi
 echo "PASS: no host touch of a field at $NP ranks; copies only for: $ALLOWED"
