@@ -187,8 +187,13 @@ bool isField(const void* data) {
 const std::map<std::string, Copies>& copies() { return copyCounts; }
 const std::map<std::string, StageWork>& stageWork() { return work; }
 bool countsPages() { return pages; }
-void setStage(const std::string& stage) {
-  if (isArmed) current = &work[stage];
+std::string setStage(const std::string& stage) {
+  if (!isArmed) return "";
+  std::string was;
+  for (auto& [name, w] : work)
+    if (&w == current) was = name;
+  current = &work[stage];
+  return was;
 }
 long long kernels() { return nKernels; }
 long long deepCopies() { return nDeepCopies; }

@@ -61,7 +61,8 @@ void reset();
 struct StageWork {
   long long kernels = 0, bytes = 0;
 };
-void setStage(const std::string& stage);
+// Returns the stage it replaces (stages nest: momentum runs stress and forces).
+std::string setStage(const std::string& stage);
 const std::map<std::string, StageWork>& stageWork();
 
 void countCopy(const char* why, std::size_t bytes);

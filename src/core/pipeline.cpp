@@ -63,10 +63,10 @@ void Pipeline::run(Stage s, State& st) {
   for (auto& t : it->second) {
     const double t0 = MPI_Wtime();
     const mpi_traffic::Counts c0 = mpi_traffic::now();
-    host_access::setStage(toString(s)); // the host-touch check's counts by stage
+    const std::string outer = host_access::setStage(toString(s)); // the check's counts by stage
     t.fn(st);
     Kokkos::fence(); // honest timings on asynchronous backends
-    host_access::setStage("");
+    host_access::setStage(outer);
     const double dt = MPI_Wtime() - t0;
     stageTraffic[toString(s)] += mpi_traffic::now() - c0;
     stageSeconds[toString(s)] += dt;
