@@ -32,7 +32,8 @@ int depth = 0; // kernels and deep copies in flight (they nest: deep_copy runs a
 long long nKernels = 0, nDeepCopies = 0;
 std::map<std::string, Copies> copyCounts;
 std::map<std::string, StageWork> work; // by pipeline stage; "" between stages
-StageWork* current = nullptr;           // work[stage]
+std::string currentStage;               // the stage counted now
+StageWork* current = nullptr;           // work[currentStage]
 // Page mode: the pages a top-level kernel opened (reserved at arm(): the fault handler
 // must not allocate); at its end they are counted and closed.
 std::vector<char*> openPages;
@@ -134,7 +135,7 @@ void arm(bool countPages) {
   pages = countPages;
   pageSize = std::size_t(sysconf(_SC_PAGESIZE));
   openPages.reserve(1 << 20);
-  current = &work[""];
+  current = &work[currentStage];
   namespace kt = Kokkos::Tools::Experimental;
   kt::set_begin_parallel_for_callback(beginKernel);
   kt::set_end_parallel_for_callback(endKernel);
@@ -189,9 +190,8 @@ const std::map<std::string, StageWork>& stageWork() { return work; }
 bool countsPages() { return pages; }
 std::string setStage(const std::string& stage) {
   if (!isArmed) return "";
-  std::string was;
-  for (auto& [name, w] : work)
-    if (&w == current) was = name;
+  std::string was = std::move(currentStage);
+  currentStage = stage;
   current = &work[stage];
   return was;
 }
@@ -201,7 +201,7 @@ void reset() {
   copyCounts.clear();
   nKernels = nDeepCopies = 0;
   work.clear();
-  current = &work[""];
+  current = &work[currentStage];
 }
 
 void countCopy(const char* why, std::size_t bytes) {

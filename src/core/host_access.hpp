@@ -89,15 +89,8 @@ typename V::HostMirror hostMirror(const V& v) {
 // `why`. Armed and a field: a separate allocation (the emulated device copy).
 template <class V>
 typename V::HostMirror toHost(const V& v, const char* why) {
-  using H = typename V::HostMirror;
-  const std::size_t bytes = v.span() * sizeof(typename V::value_type);
-  host_access::countCopy(why, bytes);
-  if (host_access::armed() && host_access::isField(v.data())) {
-    H h = Kokkos::create_mirror(v);
-    Kokkos::deep_copy(h, v);
-    return h;
-  }
-  H h = Kokkos::create_mirror_view(v);
+  host_access::countCopy(why, v.span() * sizeof(typename V::value_type));
+  auto h = hostMirror(v);
   Kokkos::deep_copy(h, v); // no-op where h aliases v
   return h;
 }
