@@ -1,13 +1,11 @@
 """Voigt's analysis package: read a run, launch voigt, the shared formulas, pictures. Every case
 script (cases/) and perf study (perf/) reads runs and launches voigt through it.
 
-How a script finds it (no install, no .pth): one line puts the repository's python/ folder first
-on sys.path, counted up from the script's real location (links resolved), e.g. in cases/<case>/:
-
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-    from voigt_post import fields, series  # noqa: E402
-
-or from a shell: PYTHONPATH=python /usr/bin/python3 -m voigt_post.picture ...
+How a script finds it: as an installed package, `from voigt_post import fields, series`, with
+no sys.path edits. scripts/setup writes a voigt.pth naming the checkout's python/ folder into
+/usr/bin/python3's site-packages (Debian's python3 is externally managed, PEP 668: no pip);
+in a virtual environment `pip install -e python` (python/pyproject.toml); for one command
+PYTHONPATH=python /usr/bin/python3 ... (python/README.md).
 
 Modules (standard library only unless said):
 - xdmf: the outputs a run listed in fields.xdmf (time, file, cells, origin, spacing);

@@ -3,7 +3,7 @@
 Voigt's writer (src/io/) lists one uniform grid per output, its HDF5 file, time, node counts,
 origin and spacing, in XDMF's z y x order. Every case script reads them here, in x y z order:
 
-    from voigt_post.xdmf import frames   # python/ on sys.path
+    from voigt_post.xdmf import frames   # python/README.md: how voigt_post is installed
     for f in frames("output/run"):  # f.t, f.path, f.cells, f.origin, f.spacing (x y z)
 """
 import collections
