@@ -14,11 +14,11 @@ the table replaces what lies between the markers <!-- table.py MODEL TAG GRID: b
 import argparse
 import json
 import os
-import sys
+
+from voigt_post.ledger import not_run, rows_by_id, unfinished
+from voigt_post.report import replace_marked
 
 HERE = os.path.dirname(os.path.realpath(__file__))
-sys.path.insert(0, os.path.dirname(HERE))  # cases/runs.py
-import runs  # noqa: E402
 MODULI = (100, 250, 500, 750, 1000)
 
 
@@ -71,7 +71,7 @@ def table(results, ledger, model, tag, grid, packing):
                 v = done[mu].get(key) or ""
                 cells.append(v + unit if v else "-")
             elif n == 0:
-                cells.append(runs.unfinished(ledger[i]) if i in ledger else runs.not_run(results, i, 1.0))
+                cells.append(unfinished(ledger[i]) if i in ledger else not_run(results, i, 1.0))
             else:
                 cells.append("")
         lines.append("| %s | %s | %s |" % (name, paper, " | ".join(cells)))
@@ -126,18 +126,12 @@ def main():
     if os.path.exists(a.packing):
         with open(a.packing) as f:
             packing = json.load(f)["voidage_written"]   # as plots.py: the bed the scene holds
-    text = table(runs.rows_by_id(a.results), runs.rows_by_id(a.ledger), a.model, a.tag, a.grid, packing)
+    text = table(rows_by_id(a.results), rows_by_id(a.ledger), a.model, a.tag, a.grid, packing)
     if not a.readme:
         print(text)
         return
     begin, end = markers(a.model, a.tag, a.grid)
-    with open(a.readme) as f:
-        doc = f.read()
-    if begin not in doc or end not in doc:
-        raise SystemExit("table.py: %s has no %s ... %s markers" % (a.readme, begin, end))
-    pre, rest = doc.split(begin, 1)
-    with open(a.readme, "w") as f:
-        f.write(pre + begin + "\n" + text + "\n" + end + rest.split(end, 1)[1])
+    replace_marked(a.readme, begin, end, text, "table.py")
     print("table.py: %s updated" % a.readme)
 
 

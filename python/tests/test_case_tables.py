@@ -52,8 +52,7 @@ class TableTest(unittest.TestCase):
 
 class NotRunTest(unittest.TestCase):
     def test_quotes_the_approximate_twin(self):
-        sys.path.insert(0, CASES)
-        import runs
+        from voigt_post import ledger as runs
         res = {"mu1000_integrate+global_75": {"steps": "7444", "wall_s": "11084", "ranks": "1", "t_end": "0.5000"},
                "mu2000_integrate+global_75": {"steps": "900", "wall_s": "80", "ranks": "1", "t_end": "0.0800"}}
         self.assertEqual(runs.not_run(res, "mu1000_integrate+global+exact_75", 0.5),

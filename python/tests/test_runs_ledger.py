@@ -1,15 +1,14 @@
-"""cases/runs.py, the long runs' ledger: what a fresh machine (no outputs) learns from it."""
-import importlib.util
+"""The long runs' ledger (voigt_post/ledger.py, run_ids.py) and its command line cases/runs.py:
+what a fresh machine (no outputs) learns from it."""
+import csv
 import json
 import os
 import tempfile
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SPEC = importlib.util.spec_from_file_location(
-    "runs", os.path.join(HERE, "..", "..", "cases", "runs.py"))
-runs = importlib.util.module_from_spec(SPEC)
-SPEC.loader.exec_module(runs)
+from voigt_post import ledger as runs
+from voigt_post import run_ids
+from run_fixture import script
 
 
 class Ledger(unittest.TestCase):
@@ -65,7 +64,7 @@ class Ledger(unittest.TestCase):
         runs.update(self.ledger, "c", {"state": "finished", "steps": "9"})
         self.assertEqual(runs.progress(self.ledger, out), ["a"])
         with open(self.ledger) as f:
-            rows = {r["run_id"]: r for r in runs.csv.DictReader(f)}
+            rows = {r["run_id"]: r for r in csv.DictReader(f)}
         self.assertEqual((rows["a"]["steps"], rows["a"]["t_reached"], rows["a"]["state"]), ("2", "0.2", "running"))
         self.assertEqual(rows["b"]["steps"], "")
         self.assertEqual(rows["c"]["steps"], "9")
@@ -91,19 +90,19 @@ class Ledger(unittest.TestCase):
             with open(os.path.join(d, "summary.json"), "w") as f:
                 json.dump(dict(summ, **extra), f)
             runs.end(self.ledger, "r", d, 75, 0)
-            row = next(runs.csv.DictReader(open(self.ledger)))
+            row = next(csv.DictReader(open(self.ledger)))
             self.assertEqual((row["state"], row["to_finish_s"], row["wall_s"]), ("wall_limit", left, "55.0"))
-        runs.main(["runs.py", "start", self.ledger, "r", "1000", "m", "4x4x4", "1"])  # a new segment: unknown
-        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "")
+        script("cases/runs.py", "start", self.ledger, "r", "1000", "m", "4x4x4", "1")  # a new segment: unknown
+        self.assertEqual(next(csv.DictReader(open(self.ledger)))["to_finish_s"], "")
         with open(os.path.join(d, "summary.json"), "w") as f:
             json.dump(dict(summ, state="finished", simulated_time=0.8, end_time=0.8), f)
         runs.end(self.ledger, "r", d, 0, 0)
-        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "0")
+        self.assertEqual(next(csv.DictReader(open(self.ledger)))["to_finish_s"], "0")
         with open(os.path.join(d, "summary.json"), "w") as f:
             json.dump(dict(summ, state="blow_up", end_time=0.8), f)
         runs.end(self.ledger, "r", d, 1, 0)  # a blow-up cannot be finished
-        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))[("state")], "failed")
-        self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["to_finish_s"], "")
+        self.assertEqual(next(csv.DictReader(open(self.ledger)))[("state")], "failed")
+        self.assertEqual(next(csv.DictReader(open(self.ledger)))["to_finish_s"], "")
 
     def test_end_records_the_builds_of_each_segment(self):
         # summary.json's segment_history (Voigt since 2026-12-05): the ledger names the builds
@@ -116,7 +115,7 @@ class Ledger(unittest.TestCase):
                 json.dump({"state": "finished", "simulated_time": 1, "steps": 5, "wall_seconds": 1.0,
                            "segment_history": h}, f)
             runs.end(self.ledger, "r", d, 0, 0)
-            self.assertEqual(next(runs.csv.DictReader(open(self.ledger)))["revisions"], want)
+            self.assertEqual(next(csv.DictReader(open(self.ledger)))["revisions"], want)
 
     def test_run_id_says_which_projection(self):
         scene = os.path.join(self.dir.name, "s.yaml")
@@ -130,15 +129,42 @@ class Ledger(unittest.TestCase):
                                 ("projection:\n  operator: exact\n", ["projection.operator=approximate"], "+settled")]:
             with open(scene, "w") as f:
                 f.write("domain:\n  cells: [4, 8, 4]\n" + body)
-            self.assertEqual(runs.tagged_model("extend", sets, scene), "extend+global" + tag, body)
-        self.assertEqual(runs.run_id("100", runs.tagged_model("extend", [], scene), "4x8x4"), "mu100_extend+global+exact+balanced+settled_4x8x4")
-        self.assertEqual(runs.tagged_model("extend", ["level_set.volume_correction=none"]), "extend+none+settled")
+            self.assertEqual(run_ids.tagged_model("extend", sets, scene), "extend+global" + tag, body)
+        self.assertEqual(run_ids.run_id("100", run_ids.tagged_model("extend", [], scene), "4x8x4"), "mu100_extend+global+exact+balanced+settled_4x8x4")
+        self.assertEqual(run_ids.tagged_model("extend", ["level_set.volume_correction=none"]), "extend+none+settled")
 
     def test_durations(self):
         for text, s in [("3h", 10800), ("170m", 10200), ("3600s", 3600), ("02:50:00", 10200)]:
-            self.assertAlmostEqual(runs.seconds(text), s)
+            self.assertAlmostEqual(run_ids.seconds(text), s)
         with self.assertRaises(ValueError):
-            runs.seconds("soon")
+            run_ids.seconds("soon")
+
+
+    def test_command_line(self):
+        # cases/runs.py, as cases/study.sh and the run scripts call it.
+        scene = os.path.join(self.dir.name, "s.yaml")
+        with open(scene, "w") as f:
+            f.write("domain:\n  cells: [4, 8, 4]\nprojection:\n  operator: approximate\n")
+        run = lambda *a, **k: script("cases/runs.py", *a, **k).stdout  # noqa: E731
+        self.assertEqual(run("id", scene, "100", "extend", "domain.cells=[6,6,6]"),
+                         "mu100_extend+global+settled_6 6x6x6 extend+global+settled\n")
+        self.assertEqual(run("seconds", "2h30m"), "9000\n")
+        self.assertIn("is not a duration", script("cases/runs.py", "seconds", "soon", check=False).stderr)
+        self.assertEqual(run("state", self.dir.name), "new\n")
+        self.assertEqual(run("recorded", self.ledger, "a"), "\n")
+        run("start", self.ledger, "a", "100", "extend+global", "4x8x4", "2")
+        self.assertEqual(run("recorded", self.ledger, "a"), "running\n")
+        table = run("table", self.ledger).splitlines()
+        self.assertEqual(table[0], "| " + " | ".join(runs.COLUMNS) + " |")
+        self.assertTrue(table[2].startswith("| a | 100 | extend+global | 4x8x4 | 2 |"))
+        d = os.path.join(self.dir.name, "a")
+        os.makedirs(d)
+        with open(os.path.join(d, "summary.json"), "w") as f:
+            json.dump({"state": "finished", "simulated_time": 0.5, "steps": 7, "wall_seconds": 2.0}, f)
+        run("end", self.ledger, "a", d, "0", "0")
+        self.assertEqual(run("recorded", self.ledger, "a"), "finished\n")
+        self.assertEqual(run("progress", self.ledger, self.dir.name), "")   # nothing running
+        self.assertNotEqual(script("cases/runs.py", "nonsense", check=False).returncode, 0)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
-"""Report helpers of the perf studies (Python standard library only): numbers for Markdown
-tables, medians over repeats, a README section rewritten between two marker lines."""
+"""Report helpers of the perf studies and the cases' tables (Python standard library only):
+numbers for Markdown tables, medians over repeats, a README section rewritten between two
+marker lines."""
 import statistics
 
 
@@ -34,6 +35,13 @@ def failed_runs(items):
     return out
 
 
+def splice(text, begin, end, lines):
+    """TEXT with what lies between its lines BEGIN and END replaced by LINES (a list of lines)."""
+    a, rest = text.split(begin, 1)
+    b = rest.split(end, 1)[1] if end in rest else ""
+    return a + begin + "\n" + "\n".join(lines) + "\n" + end + b
+
+
 def replace_section(path, begin, end, lines, title):
     """Rewrites PATH's text between the lines BEGIN and END with LINES (a new file headed
     "# TITLE", or the markers appended, when they are not there yet)."""
@@ -44,7 +52,16 @@ def replace_section(path, begin, end, lines, title):
         text = "# %s\n\n%s\n%s\n" % (title, begin, end)
     if begin not in text:
         text += "\n%s\n%s\n" % (begin, end)
-    a, rest = text.split(begin, 1)
-    b = rest.split(end, 1)[1] if end in rest else ""
     with open(path, "w") as f:
-        f.write(a + begin + "\n" + "\n".join(lines) + "\n" + end + b)
+        f.write(splice(text, begin, end, lines))
+
+
+def replace_marked(path, begin, end, text, who):
+    """The cases' table.py --readme: PATH's text between its markers BEGIN and END becomes TEXT;
+    a file without both markers is left alone and the program ends with WHO's message."""
+    with open(path) as f:
+        doc = f.read()
+    if begin not in doc or end not in doc:
+        raise SystemExit("%s: %s has no %s ... %s markers" % (who, path, begin, end))
+    with open(path, "w") as f:
+        f.write(splice(doc, begin, end, [text]))
