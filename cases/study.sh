@@ -214,7 +214,7 @@ study_runs() {
 # from the printf format $2 and the modulus; fig_dir: $out, or $out/figures_<model> when the
 # study ran more than one model.
 # A run whose folder is not on this machine is drawn from its committed digest
-# (cases/<name>/digests/<id>.npz) when the case keeps them (cases/porous_bed/run_data.py).
+# (cases/<name>/digests/<id>.npz) when the case keeps them (python/voigt_post/porous_bed.py).
 study_figure_runs() {
   local mu id src digests
   digests="$root/cases/$(basename "$(dirname "$study_scene")")/digests"

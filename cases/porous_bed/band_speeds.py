@@ -9,24 +9,38 @@ FILE: a checkpoint (checkpoint_*.h5) or an output (fields_*.h5) of porous_bed.ya
 rigid bed (rigid_bed.py), which has no psi: the distance to the packing's spheres stands in.
 Only the bed's interior counts (x, z 1.1-9.9 cm, inside the held wall layer; y 6-30 cm).
 Node values: velocity as stored; psi, density the mean of the 8 cells around the node (an output
-file has no density: it is blended from psi as the model does, gas 1, bed 10 kg/m^3); the
-pressure gradient the semi-staggered one (the mean of the 4 cell-pair differences across each
-axis). Arrays are stored (z, y, x).
+file has no density: it is blended from psi as the model does, with the scene's gas and bed
+densities and smoothing); the pressure gradient the semi-staggered one (the mean of the 4
+cell-pair differences across each axis). Arrays are stored (z, y, x).
+The grid, densities and smoothing come from the scene record in FILE's folder (the run's
+output); a file copied out of its run folder is read as the case's porous_bed.yaml (the
+paper's grid), with a note on stderr.
 """
 import argparse
 import csv
 import os
 
-import sys
-
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import formulas  # noqa: E402
+from voigt_post import formulas, scene_record, series
 
-H = 0.11 / 50  # the paper's grid spacing (porous_bed.yaml)
-RHO_GAS, RHO_BED, KAPPA = 1.0, 10.0, 2.0  # porous_bed.yaml: densities, smoothing (cells)
+HERE = os.path.dirname(os.path.realpath(__file__))
+
+
+def parameters(path):
+    """(origin x y z, h, gas density, bed density, kappa in cells) of the run FILE belongs to;
+    the rigid bed (rigid_bed.py: no level set) has no bed density and no kappa (None)."""
+    run = os.path.dirname(os.path.abspath(path))
+    sc = scene_record.scene_or(run, os.path.join(HERE, "porous_bed.yaml"), "band_speeds.py")
+    lo, _ = scene_record.extent(sc)
+    ls = sc.get("level_set")
+    if not ls:
+        return lo, scene_record.spacing(sc)[0], float(scene_record.material(sc)["density"]), None, None
+    # kappa: what the run used (summary.json), else the scene's, else Voigt's default (2 cells).
+    kappa = series.summary(run, {}).get("level_set", {}).get("smoothing_cells", ls.get("smoothing", 2))
+    return (lo, scene_record.spacing(sc)[0], float(scene_record.material(sc)["density"]),
+            float(scene_record.material(sc, ls["phase"])["density"]), float(kappa))
 
 
 def read(f, name):
@@ -55,9 +69,10 @@ def pressure_gradient(p, h):
     return g
 
 
-def sphere_distance(shape, h, packing):
-    """max over spheres of r - |x - c| at the nodes (> 0 inside), arrays (z, y, x)."""
-    z, y, x = (np.arange(n) * h for n in shape)
+def sphere_distance(shape, lo, h, packing):
+    """max over spheres of r - |x - c| at the nodes (> 0 inside), arrays (z, y, x); LO the
+    origin (x y z)."""
+    z, y, x = (o + np.arange(n) * h for o, n in zip(lo[::-1], shape))
     Z, Y, X = np.meshgrid(z, y, x, indexing="ij")
     d = np.full(shape, -1e9)
     with open(packing) as f:
@@ -68,22 +83,22 @@ def sphere_distance(shape, h, packing):
 
 
 def main():
-    here = os.path.dirname(os.path.realpath(__file__))
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("file")
-    ap.add_argument("--packing", default=os.path.join(here, "packing.csv"))
+    ap.add_argument("--packing", default=os.path.join(HERE, "packing.csv"))
     a = ap.parse_args()
+    lo, h, rho_gas, rho_bed, kappa = parameters(a.file)
     with h5py.File(a.file, "r") as f:
         u, p, psi, rho = (read(f, n) for n in ("velocity", "pressure", "psi", "density"))
     speed = np.sqrt((u ** 2).sum(-1))
-    dist = to_nodes(psi) if psi is not None else sphere_distance(speed.shape, H, a.packing)
-    dist = dist / H
-    if rho is None and psi is not None:  # an output file: the model's blend (Eq. 2, Eq. 4 H)
-        rho = RHO_GAS + (RHO_BED - RHO_GAS) * formulas.heaviside(psi, KAPPA * H)
-    rho_n = to_nodes(rho) if rho is not None else np.full(speed.shape, RHO_GAS)  # the rigid bed: gas only
-    g = pressure_gradient(p, H)
+    dist = to_nodes(psi) if psi is not None else sphere_distance(speed.shape, lo, h, a.packing)
+    dist = dist / h
+    if rho is None and psi is not None:  # an output file: the model's blend (Eq. 2, Eq. 4 h)
+        rho = rho_gas + (rho_bed - rho_gas) * formulas.heaviside(psi, kappa * h)
+    rho_n = to_nodes(rho) if rho is not None else np.full(speed.shape, rho_gas)  # the rigid bed: gas only
+    g = pressure_gradient(p, h)
     gmag = np.sqrt((g ** 2).sum(-1))
-    z, y, x = np.meshgrid(*(np.arange(n) * H for n in speed.shape), indexing="ij")
+    z, y, x = np.meshgrid(*(o + np.arange(n) * h for o, n in zip(lo[::-1], speed.shape)), indexing="ij")
     bed = (x > 0.011) & (x < 0.099) & (z > 0.011) & (z < 0.099) & (y > 0.06) & (y < 0.30) & np.isfinite(gmag)
     if psi is None:
         bed &= dist < 0  # inside an obstacle the velocity is held at 0

@@ -16,10 +16,9 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import run_data  # noqa: E402
-from voigt_post import fields  # noqa: E402  (run_data put python/ on the path)
-from voigt_post.xdmf import frames  # noqa: E402
+from voigt_post import fields
+from voigt_post.porous_bed import RunDir
+from voigt_post.xdmf import frames
 
 
 def outlet_stats(u):
@@ -32,7 +31,7 @@ def outlet_stats(u):
 
 
 def run_row(d):
-    r = run_data.RunDir(d)
+    r = RunDir(d)
     with open(os.path.join(d, "summary.json")) as f:
         steps = json.load(f)["steps"]
     _, grad = r.section_gradient()

@@ -6,7 +6,7 @@ Python 3 + numpy + matplotlib + h5py (Debian python3-*).
     cases/porous_bed/plots.py -o DIR --run output/pb/mu_100 100 --run output/pb/mu_1000 1000 [--title T]
         [--time T] [--csv results.csv] [--rigid RIGID_RUN] [--digests DIGEST_DIR]
 
-A --run is a run's output folder or its digest (run_data.py: DIR/<run id>.npz, the numbers these
+A --run is a run's output folder or its digest (voigt_post/porous_bed.py: DIR/<run id>.npz, the numbers these
 figures need at the run's end, committed in cases/porous_bed/digests/ so that a run's figures
 outlive the machine it ran on). With --digests DIR, one digest per finished run folder is
 written there.
@@ -25,21 +25,18 @@ into FILE by run id (issue 22's results.csv; runs not finished and --time are le
 import argparse
 import json
 import os
-import sys
 
 import matplotlib
 import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))  # run_data
-from run_data import G, RHO, RunDir, Y0, Y1, ergun, load, peak_rise, write_digest  # noqa: E402
-from voigt_post import series  # noqa: E402
+from voigt_post import ergun, series  # noqa: E402
+from voigt_post.porous_bed import PACKING, RunDir, Y0, Y1, load, peak_rise, scene, write_digest  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+
 def results_row(run, summ, t, mean, section, rise, peak=None):
-    """Issue 22's porous-bed table: one finished run (a run_data source and its summary.json)."""
+    """Issue 22's porous-bed table: one finished run (a RunDir or Digest and its summary.json)."""
     ls = summ.get("level_set", {})
     sharp0 = ls.get("sharp_volume_initial")
     return dict(series.run_row(run.run_id, summ), **{
@@ -81,7 +78,11 @@ def main():
     runs = sorted(((float(m), load(d, a.time)) for d, m in a.run), key=lambda r: r[0])
     os.makedirs(a.outdir, exist_ok=True)
     sfx = ("\n" + a.title) if a.title else ""
-    pk = json.load(open(os.path.join(HERE, "packing.json")))["voidage_written"]
+    with open(PACKING) as f:
+        pk = json.load(f)["voidage_written"]
+    # Ergun's gas, inflow and sphere diameter and the gas's rho g: the runs' scene (its record).
+    flow = ergun.bed_flow(scene([d for d, _ in a.run] + ([a.rigid] if a.rigid else []), "plots.py"), PACKING)
+    rho_g = flow["rho"] * flow["g"]
     f4, ax4 = plt.subplots(figsize=(6, 4.5))
     f5, ax5 = plt.subplots(figsize=(6, 4.5))
     mus, grads, secs, rows, results = [], [], [], [], []
@@ -100,7 +101,7 @@ def main():
         k = int(np.argmin(np.abs(tt - t)))      # centroid rise at the midline's time
         ts, sec = d.section_gradient()
         secs.append(sec)
-        rows.append((mu, t, mean, mean - RHO * G, ts, sec, 1000 * (cy[k] - cy[0])))
+        rows.append((mu, t, mean, mean - rho_g, ts, sec, 1000 * (cy[k] - cy[0])))
         summ = d.summary()
         if a.csv and a.time is None and series.finished(summ):
             results.append(results_row(d, summ, t, mean, sec, rows[-1][-1], peak_rise(tt, cy)))
@@ -133,9 +134,9 @@ def main():
             ax6.plot(xs, slope * xs + icpt, ls, lw=0.8,
                      label="fit (%s): %.3g mu_S + %.3g Pa/m, R^2 = %.4f" % fits[-1])
     for e, lab in ((pk["interior"], "interior, full section"), (pk["interior_flow_region"], "interior, outside hold layer")):
-        ax6.axhline(ergun(e), ls=":", color="C3" if "full" in lab else "C2",
-                    label="Ergun, e = %.3f (%s): %.1f Pa/m" % (e, lab, ergun(e)))
-    ax6.axhline(RHO * G, ls="--", color="0.5", label="gas hydrostatic rho g = 9.81 Pa/m")
+        ax6.axhline(ergun.gradient(e, **flow), ls=":", color="C3" if "full" in lab else "C2",
+                    label="Ergun, e = %.3f (%s): %.1f Pa/m" % (e, lab, ergun.gradient(e, **flow)))
+    ax6.axhline(rho_g, ls="--", color="0.5", label="gas hydrostatic rho g = %.2f Pa/m" % rho_g)
     rigid = None
     if a.rigid:  # same measure (midline, y = 0.10-0.25 m) on the bed of fixed spheres
         rr = load(a.rigid, a.time)
@@ -199,10 +200,11 @@ def main():
         print("\nlinear fit (%s): slope %.4g Pa/m per Pa, intercept %.4g Pa/m, R^2 = %.4f" % fit)
     if rigid:
         print("rigid bed (rigid_bed.py, fixed spheres) at t = %.3g s: mean -dp/dy on the midline %.1f Pa/m (minus "
-              "rho g %.1f); section-averaged %.1f Pa/m (t = %.3g s)" % (rigid[0], rigid[1], rigid[1] - RHO * G,
+              "rho g %.1f); section-averaged %.1f Pa/m (t = %.3g s)" % (rigid[0], rigid[1], rigid[1] - rho_g,
                                                                       rigid[3], rigid[2]))
     print("Ergun (Eq. 23): e = %.3f -> %.1f Pa/m; e = %.3f -> %.1f Pa/m" % (
-        pk["interior"], ergun(pk["interior"]), pk["interior_flow_region"], ergun(pk["interior_flow_region"])))
+        pk["interior"], ergun.gradient(pk["interior"], **flow), pk["interior_flow_region"],
+        ergun.gradient(pk["interior_flow_region"], **flow)))
 
 
 if __name__ == "__main__":

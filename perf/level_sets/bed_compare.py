@@ -12,9 +12,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "cases", "porous_bed"))
-import run_data as R  # noqa: E402
-from voigt_post import series  # noqa: E402
+from voigt_post import porous_bed as R
+from voigt_post import series
 
 
 def centroid(d):

@@ -1,15 +1,17 @@
 """The cases' table.py (falling block, porous bed): the paper-vs-Voigt tables quote results.csv
 and, for runs not finished, the ledger; with --readme they replace only what lies between their
-markers; the porous bed's fit of the gradient against mu_S is least squares."""
+markers; the porous bed's fit of the gradient against mu_S is least squares, its Ergun value
+takes the gas, inflow and diameter from the case's scene and packing; grid_cost.py (both cases)
+on results.csv rows."""
 import csv
 import os
-import subprocess
-import sys
 import tempfile
 import unittest
 
-CASES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases")
-CASE = os.path.join(CASES, "falling_block")
+from voigt_post import ergun, scene_record
+from run_fixture import REPO, load, script
+
+CASES = os.path.join(REPO, "cases")
 RESULT = {"run_id": "mu1000_extend+global+exact_75", "steps": "3667", "wall_s": "5100", "ranks": "2",
           "slowing_s": "0.0607", "slowing_vy": "-0.535", "impact_gap_h": "0.52", "first_impact_s": "0.0597",
           "rebound_mm": "8.2", "rebound_to_s": "0.1267", "second_contact_s": "0.1465", "base_within_2h_s": "0.3288",
@@ -33,8 +35,7 @@ class TableTest(unittest.TestCase):
             write(led, LEDGER)
             with open(readme, "w") as f:
                 f.write("# before\n<!-- table.py: begin -->\nold table\n<!-- table.py: end -->\nafter\n")
-            cmd = [sys.executable, os.path.join(CASE, "table.py"), "--results", res, "--ledger", led]
-            subprocess.run(cmd + ["--readme", readme], check=True, capture_output=True)
+            script("cases/falling_block/table.py", "--results", res, "--ledger", led, "--readme", readme)
             with open(readme) as f:
                 doc = f.read()
             self.assertTrue(doc.startswith("# before\n<!-- table.py: begin -->\n"))
@@ -64,15 +65,17 @@ class NotRunTest(unittest.TestCase):
 
 class PorousTableTest(unittest.TestCase):
     def test_fit_and_cells(self):
-        sys.path.insert(0, os.path.join(CASES, "porous_bed"))
-        import table
+        table = load("cases/porous_bed/table.py", "porous_table")
         slope, icpt, r2 = table.fit([100, 250, 1000], [60.0, 75.0, 150.0])   # on the line 0.1 mu + 50
         self.assertAlmostEqual(slope, 0.1, places=12)
         self.assertAlmostEqual(icpt, 50.0, places=10)
         self.assertAlmostEqual(r2, 1.0, places=12)
         self.assertIsNone(table.fit([100, 250], [1.0, 2.0]))   # two points: no fit worth the name
         # Ergun at e = 0.4 (Eq. 23 by hand: 0.6 / 0.064 * 0.01 / 0.025 * (150 * 0.6 * 1e-5 / 2.5e-3 + 1.75) = 7.91 Pa/m)
-        self.assertAlmostEqual(table.ergun(0.4), 0.6 / 0.064 * 0.4 * (0.36 + 1.75), places=10)
+        flow = ergun.bed_flow(scene_record.load(os.path.join(CASES, "porous_bed", "porous_bed.yaml")),
+                              os.path.join(CASES, "porous_bed", "packing.json"))
+        self.assertEqual(flow, {"rho": 1.0, "mu": 1e-5, "u": 0.1, "d": 0.025, "g": 9.81})   # the paper's
+        self.assertAlmostEqual(ergun.gradient(0.4, **flow), 0.6 / 0.064 * 0.4 * (0.36 + 1.75), places=10)
         with tempfile.TemporaryDirectory() as tmp:
             res, led = os.path.join(tmp, "results.csv"), os.path.join(tmp, "runs.csv")
             rows = [{"run_id": "mu%d_extend+global+exact_50x150x50" % mu, "t_end": "1.0000", "steps": "9000",
@@ -83,9 +86,8 @@ class PorousTableTest(unittest.TestCase):
             rows.append(dict(rows[0], run_id="rigid_50x150x50", section_gradient="18.0", mean_gradient="38.2"))
             write(res, *rows)
             write(led, dict(LEDGER, run_id="mu500_extend+global+exact_50x150x50"))
-            out = subprocess.run([sys.executable, os.path.join(CASES, "porous_bed", "table.py"), "--results", res,
-                                  "--ledger", led, "--packing", os.path.join(tmp, "none.json")],
-                                 check=True, capture_output=True, text=True).stdout
+            out = script("cases/porous_bed/table.py", "--results", res, "--ledger", led,
+                         "--packing", os.path.join(tmp, "none.json")).stdout
             self.assertIn("| 60.0 Pa/m | 75.0 Pa/m | *not finished*: wall_limit at t = 0.21 s", out)
             self.assertIn("*not run* | 150.0 Pa/m |", out)           # 750 Pa: in neither file
             self.assertIn("section-averaged gradient against mu_S (3 finished moduli", out)
@@ -95,8 +97,7 @@ class PorousTableTest(unittest.TestCase):
 
     def test_grid_cost_pairs_the_grids(self):
         # grid_cost.py: a modulus's finished runs on the two grids, of one model and tag only.
-        sys.path.insert(0, os.path.join(CASES, "porous_bed"))
-        import grid_cost
+        grid_cost = load("cases/porous_bed/grid_cost.py", "porous_grid_cost")
         with tempfile.TemporaryDirectory() as tmp:
             res = os.path.join(tmp, "results.csv")
             base = {"t_end": "1.0000", "steps": "100", "wall_s": "1", "ranks": "1", "section_gradient": "50",
@@ -114,10 +115,9 @@ class PorousTableTest(unittest.TestCase):
 
     def test_outlet_stats_reads_the_last_y_plane(self):
         # outlet.py: arrays are stored (z, y, x, 3); the outlet is the last y plane, backflow u_y < 0.
-        sys.path.insert(0, os.path.join(CASES, "porous_bed"))
         try:
             import numpy as np
-            import outlet
+            outlet = load("cases/porous_bed/outlet.py")
         except ImportError:  # numpy, h5py: scripts/setup --figures
             self.skipTest("numpy/h5py")
         u = np.zeros((5, 4, 6, 3))         # outlet plane 5 x 6 nodes; its 3 x 4 inner ones are free

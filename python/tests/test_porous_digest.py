@@ -1,20 +1,19 @@
-"""cases/porous_bed/run_data.py: a run's digest gives plots.py the same numbers as its folder
-(Figs. 4-6, the table and results.csv row), so figures outlive the machine a run was on.
-Two 10 x 30 x 10 runs of the porous bed and one of its rigid bed to t = 0.03 s (about 1 s each).
-VOIGT names the binary."""
+"""The porous bed's scripts on two 10 x 30 x 10 runs of the porous bed and one of its rigid bed
+to t = 0.03 s (about 1 s each): plots.py (voigt_post/porous_bed.py: a run's digest gives the
+same numbers as its folder, Figs. 4-6, the table and results.csv row, so figures outlive the
+machine a run was on), outlet.py and band_speeds.py. VOIGT names the binary."""
 import os
 import subprocess
-import sys
 import tempfile
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.join(HERE, "..", "..")
-CASE = os.path.join(ROOT, "cases", "porous_bed")
-sys.path.insert(0, CASE)
+from voigt_post import scene_record
+from run_fixture import PYTHON, REPO, script
+
+CASE = os.path.join(REPO, "cases", "porous_bed")
 try:
     import numpy as np
-    import run_data
+    from voigt_post import porous_bed as run_data
 except ImportError:  # numpy is a --figures package
     np = None
 
@@ -24,7 +23,7 @@ class Digest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.tmp = tempfile.TemporaryDirectory()
-        voigt = os.environ.get("VOIGT", os.path.join(ROOT, "build", "voigt"))
+        voigt = os.environ.get("VOIGT", os.path.join(REPO, "build", "voigt"))
         cls.runs = []
         for mu in (100, 1000):
             d = os.path.join(cls.tmp.name, "mu%d_extend+global+exact_10x30x10" % mu)
@@ -36,7 +35,7 @@ class Digest(unittest.TestCase):
         # The rigid bed (rigid_bed.py: the spheres as fixed obstacles, no level set) on the same grid.
         scene = os.path.join(cls.tmp.name, "rigid.yaml")
         with open(scene, "w") as f:
-            subprocess.run([sys.executable, os.path.join(CASE, "rigid_bed.py"), "--approximate"], check=True, stdout=f)
+            subprocess.run([PYTHON, os.path.join(CASE, "rigid_bed.py"), "--approximate"], check=True, stdout=f)
         cls.rigid = os.path.join(cls.tmp.name, "rigid_10x30x10")
         subprocess.run([voigt, "run", scene, "-o", cls.rigid, "--end-time", "0.03", "--set", "domain.cells=[10,30,10]",
                         "--set", "output.interval=0.01", "--set", "probes.0.interval=0.01"], check=True, capture_output=True)
@@ -47,10 +46,10 @@ class Digest(unittest.TestCase):
 
     def plots(self, tag, sources, extra=()):
         out = os.path.join(self.tmp.name, tag)
-        args = [sys.executable, os.path.join(CASE, "plots.py"), "-o", out, "--csv", out + ".csv"] + list(extra)
+        args = ["-o", out, "--csv", out + ".csv"] + list(extra)
         for mu, src in sources:
             args += ["--run", src, str(mu)]
-        text = subprocess.run(args, check=True, capture_output=True, text=True).stdout
+        text = script("cases/porous_bed/plots.py", *args).stdout
         with open(out + ".csv") as f:
             return text.replace(out, "OUT"), f.read()
 
@@ -58,9 +57,10 @@ class Digest(unittest.TestCase):
         dig = os.path.join(self.tmp.name, "digests")
         table_dir, csv_dir = self.plots("from_dirs", self.runs, ["--digests", dig])
         sources = [(mu, os.path.join(dig, os.path.basename(d) + ".npz")) for mu, d in self.runs]
-        for _, path in sources:
+        for (_, d), (_, path) in zip(self.runs, sources):
             self.assertTrue(os.path.exists(path), path)
             self.assertLess(os.path.getsize(path), 200_000)  # small enough to commit
+            self.assertEqual(scene_record.scene(path), scene_record.scene(d))   # the scene record too
         table_dig, csv_dig = self.plots("from_digests", sources)
         self.assertEqual(table_dir, table_dig)  # every printed number, from doubles
         self.assertEqual(csv_dir, csv_dig)      # the results.csv rows

@@ -1,6 +1,11 @@
 """What a run was: the scene record Voigt writes into its output directory (scene.yaml at the
 start, scene_segment<N>.yaml when a restart changed the scene), with every --set applied.
-Runs from before 2026-12-02 have none. Needs Debian's python3-yaml when there is a record."""
+Runs from before 2026-12-02 have none. Needs Debian's python3-yaml when there is a record.
+
+The case scripts read a run's parameters here (domain, materials, gravity, shapes) rather than
+keeping copies of the scene's numbers: scene(), or scene_or() where a script must also work on
+runs without a record (it then reads the case's scene file and says so), and the accessors
+spacing(), extent(), material() and level_set()."""
 import glob
 import os
 import re
@@ -48,3 +53,56 @@ def cylinder(outdir, default=LEGACY_CYLINDER):
             c = ob["center"]
             return (float(c[0]), float(c[1]), float(ob["radius"]))
     raise ValueError("%s: the scene record has no cylinder along z" % outdir)
+
+
+def load(path):
+    """A scene file (or a record) as a dict."""
+    import yaml
+    with open(path) as f:
+        return yaml.safe_load(f)
+
+
+def require(outdir, who):
+    """The run's scene, or the end of the program WHO when the run has no record."""
+    sc = scene(outdir)
+    if sc is None:
+        raise SystemExit("%s: %s has no scene record (scene.yaml; runs before 2026-12-02)" % (who, outdir))
+    return sc
+
+
+def scene_or(outdir, fallback, who):
+    """The run's scene; without a record the scene file FALLBACK (the case's scene, which the
+    run is assumed to have used), with a note on stderr from WHO."""
+    sc = scene(outdir)
+    if sc is not None:
+        return sc
+    print("%s: %s has no scene record: its parameters from %s" % (who, outdir, fallback), file=sys.stderr)
+    return load(fallback)
+
+
+def extent(sc):
+    """(lo, hi) of the scene's domain, each three floats."""
+    d = sc["domain"]
+    return [float(v) for v in d["lo"]], [float(v) for v in d["hi"]]
+
+
+def spacing(sc):
+    """The cell size (hx, hy, hz) of the scene's grid."""
+    lo, hi = extent(sc)
+    return tuple((hi[k] - lo[k]) / sc["domain"]["cells"][k] for k in range(3))
+
+
+def material(sc, name=None):
+    """The material NAME (default: the scene's fluid, where no level set is positive)."""
+    return sc["materials"][sc["fluid"] if name is None else name]
+
+
+def level_set(sc, name=None):
+    """The level set NAME of `level_sets`, or the scene's single `level_set` (name None)."""
+    if name is None and "level_set" in sc:
+        return sc["level_set"]
+    for ls in sc.get("level_sets") or []:
+        if name is None or ls.get("name") == name:
+            return ls
+    raise KeyError("the scene has no level set %s" % (name or ""))
+

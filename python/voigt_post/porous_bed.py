@@ -1,11 +1,14 @@
-"""What Figs. 4-8 (plots.py) read from one porous-bed run: from its output folder (RunDir) or
-from its digest (Digest), a small committed .npz with the same numbers at the run's end.
+"""What Figs. 4-8 of the porous bed (cases/porous_bed/plots.py, outlet.py) read from one run:
+from its output folder (RunDir) or from its digest (Digest), a small committed .npz with the
+same numbers at the run's end, and the scene it ran (scene()).
 
 Full-grid runs take hours and their folders live outside the work tree, on a machine that a
 later job may not get back (2026-12-05: all five 50 x 150 x 50 folders were lost with the
 machine). The digest keeps what the figures and results.csv need, ~0.1 MB a run, in
 cases/porous_bed/digests/<run id>.npz (plots.py --digests DIR writes one per finished run),
-so the figures of every finished run can be drawn again on any machine.
+so the figures of every finished run can be drawn again on any machine. A digest holds the
+run's scene record too (file:scene.yaml, as voigt_post/digest.py's; since 2026-12-08).
+Numpy; h5py or h5dump for a folder's fields; PyYAML for the scene.
 """
 import json
 import os
@@ -13,18 +16,28 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import fields, series  # noqa: E402
-from voigt_post.xdmf import frames  # noqa: E402
+from . import fields, scene_record, series
+from .launch import REPO
+from .xdmf import frames
 
+CASE = os.path.join(REPO, "cases", "porous_bed")
+SCENE = os.path.join(CASE, "porous_bed.yaml")         # the case's scene file
+PACKING = os.path.join(CASE, "packing.json")           # its packing's record (voidages, diameter)
 Y0, Y1 = 0.10, 0.25  # the paper's bed interior
-RHO, MU, U, D, G = 1.0, 1e-5, 0.1, 0.025, 9.81   # the scene's gas, inflow, sphere diameter, gravity
 MAX_SERIES = 2000    # centroid samples kept in a digest (thinned evenly; Fig. 8 draws a line)
 
 
-def ergun(e):
-    """Paper Eq. (23): -dp/dy of a rigid bed of voidage e (Pa/m)."""
-    return (1 - e) / e ** 3 * RHO * U ** 2 / D * (150 * (1 - e) * MU / (D * U * RHO) + 1.75)
+def scene(sources, who):
+    """The scene of the first of SOURCES (run folders or digests) that has a record; else the
+    case's porous_bed.yaml (digests written before 2026-12-08, runs before 2026-12-02), with a
+    note on stderr from WHO."""
+    for src in sources:
+        sc = scene_record.scene(src)
+        if sc is not None:
+            return sc
+    print("%s: no scene record in %s: the gas, inflow and gravity of %s" % (who, ", ".join(sources), SCENE),
+          file=sys.stderr)
+    return scene_record.load(SCENE)
 
 
 def _section_gradient(pbar, dy):
@@ -130,6 +143,10 @@ def write_digest(run, path):
     summ = run.summary()
     z = dict(run_id=run.run_id, summary=json.dumps(summ), midline_t=mt, midline_y=my, midline_p=mp,
              section_t=st, section_gradient=sg)
+    record = scene_record.record_path(run.d)
+    if record:
+        with open(record) as f:
+            z["file:scene.yaml"] = np.frombuffer(f.read().encode(), dtype=np.uint8)
     if "elasticity" in summ:  # a bed (rigid_bed.py's fixed spheres have no centroid, no psi)
         ct, cy = run.centroid()
         keep = thin(len(ct))
