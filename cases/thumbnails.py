@@ -12,7 +12,6 @@ draws the numerical result against the exact solution (matplotlib, Agg) into the
 import argparse
 import os
 import subprocess
-import sys
 import time
 
 import matplotlib
@@ -21,7 +20,6 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))  # voigt_post
 from voigt_post import fields, launch, series  # noqa: E402
 from voigt_post.formulas import taylor_green_rms  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402

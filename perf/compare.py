@@ -25,7 +25,7 @@ import tempfile
 import time
 
 sys.dont_write_bytecode = True  # no perf/__pycache__ in the work tree
-import compare_lib as L  # noqa: E402  (beside this file; it puts python/ on sys.path for voigt_post)
+import compare_lib as L  # noqa: E402  (beside this file)
 
 ROOT = L.ROOT
 # name: (scene file in the working tree, cells pinned with --set, steps)

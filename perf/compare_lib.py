@@ -7,13 +7,11 @@ import json
 import os
 import shutil
 import subprocess
-import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))  # voigt_post
-from voigt_post import launch  # noqa: E402
-from voigt_post.launch import git, log, run_logged, tail, voigt_cmd  # noqa: E402,F401  (used by compare.py)
-from voigt_post.report import failed_runs, fmt, med, spread  # noqa: E402
+from voigt_post import launch
+from voigt_post.launch import git, log, run_logged, tail, voigt_cmd  # noqa: F401  (used by compare.py)
+from voigt_post.report import failed_runs, fmt, med, spread
 
 ROOT = launch.REPO
 NICE = ["nice", "-n", "10"]

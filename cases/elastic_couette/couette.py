@@ -25,13 +25,11 @@ Defaults are the parameters of elastic_couette.yaml and tests/elasticity/test_co
 import argparse
 import glob
 import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import series  # noqa: E402
-from voigt_post.couette import P, Couette, smoothed  # noqa: E402
+from voigt_post import series
+from voigt_post.couette import P, Couette, smoothed
 
 
 def check(c):

@@ -16,14 +16,12 @@ probe_centre.csv (every 0.005 s), the velocity at the block's centre.
 h/2; positions good to about h/2).
 """
 import math
-import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import fields, series  # noqa: E402
-from voigt_post.formulas import heaviside  # noqa: E402
-from voigt_post.scene_record import cylinder  # noqa: E402
-from voigt_post.xdmf import frames  # noqa: E402
+from voigt_post import fields, series
+from voigt_post.formulas import heaviside
+from voigt_post.scene_record import cylinder
+from voigt_post.xdmf import frames
 
 
 def read_flat(path, name):

@@ -6,11 +6,8 @@ cells of size h; results_row(d, cols, summ) is one results.csv row. Energy ratio
 energy of block and air + elastic energy) / potential energy the block has released since
 t = 0; without an energy source it stays <= 1.
 """
-import os
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import series  # noqa: E402
+from voigt_post import series
 
 
 def first(ts, vals, test, t0=0.0):

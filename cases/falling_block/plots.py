@@ -17,13 +17,11 @@ energy the block has released since t = 0; without an energy source it stays <= 
 """
 import argparse
 import os
-import sys
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
 from voigt_post import digest, series  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402
 from events import cell, measure, results_row, rows as event_rows  # noqa: E402

@@ -9,12 +9,10 @@ VTK, headless under xvfb-run).
 The cylinder comes from each run's scene record (scene.yaml); a run from before 2026-12-02 has
 none and gets `--cylinder X Y R` (default: the 4.5 cm cylinder of those runs).
 """
-import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import picture  # noqa: E402
-from voigt_post.scene_record import LEGACY_CYLINDER  # noqa: E402
+from voigt_post import picture
+from voigt_post.scene_record import LEGACY_CYLINDER
 
 if __name__ == "__main__":
     argv = sys.argv[1:]

@@ -21,8 +21,6 @@ impact at 75^3 and sinks ~3 mm after; at 30^3 it is 3-5 mm higher).
 Prints a markdown table (speeds, their ratio to c_s, the fit's R^2).
 """
 import argparse
-import os
-import sys
 
 import numpy as np
 import matplotlib
@@ -30,7 +28,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from events import slowing  # noqa: E402  (the same impact rule as plots.py's events table)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
 from voigt_post import digest, series  # noqa: E402
 from voigt_post.scene_record import cylinder  # noqa: E402
 from voigt_post.xdmf import frames  # noqa: E402

@@ -28,14 +28,11 @@ Usage: linear_theory.py [--re 256] [--atwood 0.5]   (a few minutes: dense eigenp
 Prints growth rates in units sqrt(g/H) for kappa = 2 h at several h.
 """
 import argparse
-import os
-import sys
 
 import numpy as np
 import scipy.linalg as sla
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post.formulas import heaviside  # noqa: E402  (Eq. 4)
+from voigt_post.formulas import heaviside  # (Eq. 4)
 
 
 def sharp_equal_nu(A, g, k, nu):

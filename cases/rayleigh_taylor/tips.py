@@ -27,9 +27,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import fields  # noqa: E402
-from voigt_post.xdmf import frames  # noqa: E402
+from voigt_post import fields
+from voigt_post.xdmf import frames
 
 HE1999 = [  # t_T, bubble, spike
     (0.25, 0.113, -0.121), (0.50, 0.161, -0.165), (0.75, 0.213, -0.243), (1.00, 0.274, -0.348),

@@ -218,8 +218,7 @@ def main():
     f.add_argument("-o", required=True)
     a = p.parse_args()
     if a.cmd == "figures":
-        sys.path.insert(0, HERE)
-        from figures import figures
+        from figures import figures   # beside this script (its folder leads sys.path)
         figures(a, references, reference_series)
     else:
         {"finished": cmd_finished, "show": cmd_show, "row": cmd_row, "table": cmd_table}[a.cmd](a)

@@ -2,11 +2,9 @@
 folder and its summary.json and returns {"error": ..., and more columns of results.csv}."""
 import math
 import os
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import couette, fields, series  # noqa: E402
-from voigt_post.formulas import taylor_green_rms  # noqa: E402
+from voigt_post import couette, fields, series
+from voigt_post.formulas import taylor_green_rms
 
 
 def h5_files(d):

@@ -2,11 +2,9 @@
 its CASES: scene, knobs, base setting and error label per case)."""
 import math
 import os
-import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import report  # noqa: E402
+from voigt_post import report
 
 
 def num(r, k):

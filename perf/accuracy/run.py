@@ -39,10 +39,9 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import launch, series  # noqa: E402
-from accuracy_errors import COUETTE_PERIODS, COUETTE_SAMPLES, COUETTE_T, couette_error, tg_error, zalesak_error  # noqa: E402
-from accuracy_tables import plot, readme  # noqa: E402
+from voigt_post import launch, series
+from accuracy_errors import COUETTE_PERIODS, COUETTE_SAMPLES, COUETTE_T, couette_error, tg_error, zalesak_error
+from accuracy_tables import plot, readme
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = launch.REPO

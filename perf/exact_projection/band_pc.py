@@ -4,7 +4,7 @@
 # sgs-*: one symmetric Gauss-Seidel sweep on all rows or on the band's (cells of intermediate
 # 1/rho); exact-band: a direct solve on the band widened by WIDEN cells.
 import os, sys
-here = os.path.dirname(os.path.abspath(__file__)); sys.path.insert(0, here)
+here = os.path.dirname(os.path.abspath(__file__))
 sys.argv = sys.argv[:4] + ['l7'] + sys.argv[4:]
 src = open(os.path.join(here, 'split_pc.py')).read().split("if mode=='fd'")[0]
 exec(src.replace("__file__", repr(os.path.join(here, 'split_pc.py'))))

@@ -3,7 +3,7 @@
 # diagonalization for the inner solves:  P = A0^+ (G^T W G) A0^+,  W = diag(rho) (exact at one density).
 #   bfbt_pc.py N RATIO SHAPE [rho|sqrt]   (sqrt: the weighted form W = I, scaled by sqrt(rho) cellwise)
 import os, sys
-here = os.path.dirname(os.path.abspath(__file__)); sys.path.insert(0, here)
+here = os.path.dirname(os.path.abspath(__file__))
 kind = sys.argv[4] if len(sys.argv) > 4 else 'rho'
 sys.argv = sys.argv[:4] + ['l7']
 src = open(os.path.join(here, 'split_pc.py')).read().split("if mode=='fd'")[0]

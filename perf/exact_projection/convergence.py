@@ -12,8 +12,7 @@ import os
 import statistics
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))
-from voigt_post import series  # noqa: E402
+from voigt_post import series
 
 
 def line(d):

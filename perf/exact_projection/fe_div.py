@@ -3,7 +3,7 @@
 # (AMReX's nodal operator in Voigt's arrangement: D B G plus hourglass terms), both solved exactly.
 #   fe_div.py N RATIO SHAPE   (issue 19, 2026-12-05; perf/README.md "What AMReX's nodal projection solves")
 import os, sys
-here = os.path.dirname(os.path.abspath(__file__)); sys.path.insert(0, here)
+here = os.path.dirname(os.path.abspath(__file__))
 sys.argv = sys.argv[:4] + ['l7']
 src = open(os.path.join(here, 'split_pc.py')).read().split("if mode=='fd'")[0]
 exec(src.replace("__file__", repr(os.path.join(here, 'split_pc.py'))))

@@ -4,7 +4,7 @@
 #   mult_pc.py N RATIO SHAPE
 # Exact at one density (1 iteration); a jump breaks it (C and L7(B) do not commute).
 import os, sys
-here = os.path.dirname(os.path.abspath(__file__)); sys.path.insert(0, here)
+here = os.path.dirname(os.path.abspath(__file__))
 sys.argv = sys.argv[:4] + ['l7']
 src = open(os.path.join(here, 'split_pc.py')).read().split("if mode=='fd'")[0]
 exec(src.replace("__file__", repr(os.path.join(here, 'split_pc.py'))))

@@ -1,4 +1,4 @@
-import sys; sys.path.insert(0, __import__('os').path.dirname(__file__))
+import sys
 from exact_mg import *
 n = int(sys.argv[1]); ratio = float(sys.argv[2]) if len(sys.argv)>2 else 1.0
 mode = sys.argv[3] if len(sys.argv)>3 else 'all'

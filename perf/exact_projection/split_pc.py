@@ -2,7 +2,7 @@
 # 7-point operator (face coefficient: mean node 1/rho at its corners), L0 its one-density form (the same
 # eigenvectors as A0, so P is exact at one density) and S = cell 1/sqrt(1/rho).
 #   split_pc.py N RATIO SHAPE [fd|l7|split|noscale|mg]   (L7 solved exactly by splu, or by a V-cycle: mg)
-import sys; sys.path.insert(0, __import__('os').path.dirname(__file__))
+import sys
 from exact_mg import *
 import scipy.linalg as sl, scipy.sparse.linalg as spla
 exec(open(__import__('os').path.join(__import__('os').path.dirname(__file__),'tensor_pc.py')).read().split("n=int(sys.argv[1])")[0].split("from exact_mg import *")[1])

@@ -1,6 +1,6 @@
 # Check: at constant density with walls, L = sum_d K (x) M (x) M with K = D^T D, M = A^T A,
 # and K v = lambda E v gives V^T M V = I - Lambda/4, so L is diagonal in V (x) V (x) V.
-import sys; sys.path.insert(0, __import__('os').path.dirname(__file__))
+import sys
 from exact_mg import *
 import scipy.linalg as sl
 n=int(sys.argv[1]); L,G,B=build(n,1.0)

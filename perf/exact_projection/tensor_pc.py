@@ -1,6 +1,6 @@
 # CG on the exact operator at a density jump, preconditioned by the exact constant-density
 # operator's tensor-product (generalised-eigenvector) solve.
-import sys; sys.path.insert(0, __import__('os').path.dirname(__file__))
+import sys
 from exact_mg import *
 import scipy.linalg as sl
 def build2(n, ratio, shape):

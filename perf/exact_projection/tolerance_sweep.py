@@ -22,8 +22,7 @@ import statistics
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))
-from voigt_post import launch, series  # noqa: E402
+from voigt_post import launch, series
 
 
 def variants(tols, precisions, guesses):

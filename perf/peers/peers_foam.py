@@ -8,8 +8,7 @@ import sys
 import threading
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import launch  # noqa: E402
+from voigt_post import launch
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 NICE = ["nice", "-n", "10"]

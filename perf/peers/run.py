@@ -18,14 +18,12 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import launch, series  # noqa: E402
-from voigt_post.report import failed_runs, fmt, med, spread  # noqa: E402
-from peers_foam import DT, NICE, die, ensure_openfoam, foam_env, foam_setup, parse_foam_log, run_interfoam  # noqa: E402
+from voigt_post import launch, series
+from voigt_post.report import failed_runs, fmt, med, spread
+from peers_foam import DT, NICE, die, ensure_openfoam, foam_env, foam_setup, parse_foam_log, run_interfoam
 
 ROOT = launch.REPO
 SCENE = os.path.join(ROOT, "perf", "scenes", "dam_break.yaml")

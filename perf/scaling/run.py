@@ -29,10 +29,9 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import launch, report, series  # noqa: E402
-from scaling_common import BUILD, HERE, NICE, PSCALE, ROOT, SCENES, VOIGT, log, write_csv  # noqa: E402
-from scaling_tables import model_tables, mpi_tables, poisson_tables, step_tables  # noqa: E402
+from voigt_post import launch, report, series
+from scaling_common import BUILD, HERE, NICE, PSCALE, ROOT, SCENES, VOIGT, log, write_csv
+from scaling_tables import model_tables, mpi_tables, poisson_tables, step_tables
 
 LOADS = []  # 1-minute load average at the start of each voigt run
 

@@ -2,11 +2,9 @@
 scenes, the halo-field counts of the cost model, CSV files and the log-log fit."""
 import math
 import os
-import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))  # voigt_post
-from voigt_post import launch, series  # noqa: E402
+from voigt_post import launch, series
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = launch.REPO

@@ -3,12 +3,10 @@
 keeps psi and a colour around the surface at chosen times. On the shared run (run_fixture.py:
 a sphere of radius 0.25 in 12 x 8 x 8 cells, outputs at t = 0, 0.1, 0.2, probe `axis`)."""
 import os
-import sys
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))  # voigt_post
-from voigt_post import digest, fields, scene_record, series, xdmf  # noqa: E402
-from run_fixture import H, RunFixture  # noqa: E402
+from voigt_post import digest, fields, scene_record, series, xdmf
+from run_fixture import H, RunFixture
 
 try:
     import numpy as np

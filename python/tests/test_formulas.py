@@ -1,13 +1,10 @@
 """Tests of voigt_post.formulas and voigt_post.couette (no voigt run; numpy, scipy for the
 smoothed Couette state). Standard library unittest; CTest runs it with python.voigt_post."""
 import math
-import os
-import sys
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))  # voigt_post
-from voigt_post import formulas  # noqa: E402
-from voigt_post.formulas import heaviside  # noqa: E402
+from voigt_post import formulas
+from voigt_post.formulas import heaviside
 
 try:
     import numpy as np

@@ -4,14 +4,12 @@ probe against the field, the Heaviside of Eq. (4) against the solver's own volum
 Standard library unittest; CTest runs it with python.voigt_post (numpy; h5py or h5dump)."""
 import os
 import shutil
-import sys
 import tempfile
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))  # voigt_post
-from voigt_post import fields, launch, report, series, xdmf  # noqa: E402
-from voigt_post.formulas import heaviside  # noqa: E402
-from run_fixture import CENTRE, H, RADIUS, RunFixture  # noqa: E402
+from voigt_post import fields, launch, report, series, xdmf
+from voigt_post.formulas import heaviside
+from run_fixture import CENTRE, H, RADIUS, RunFixture
 
 try:
     import numpy as np

@@ -6,12 +6,10 @@ names the voigt binary); the picture test needs Debian's python3-vtk9, python3-h
 import os
 import shutil
 import subprocess
-import sys
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))  # voigt_post
-from voigt_post import scene_record, xdmf  # noqa: E402
-from run_fixture import RunFixture  # noqa: E402
+from voigt_post import scene_record, xdmf
+from run_fixture import RunFixture
 
 
 class XdmfTest(RunFixture):
