@@ -7,7 +7,7 @@ y = b moves as V sin(omega t). u(y, t) = Im[U(y) exp(i omega t)] with (README.md
     solid  U = A sin(k_s y),                               k_s = omega sqrt(rho_s / (G + i omega eta_s))
     fluid  U = B cosh(k_f (y - a)) + C sinh(k_f (y - a)),  k_f = sqrt(i omega rho_f / mu)
     B = A sin(k_s a),  mu k_f C = (G + i omega eta_s) k_s cos(k_s a) A / (i omega),  U(b) = V.
-The formulas live in python/voigt_post/couette.py (Couette, P, smoothed; perf/accuracy uses them
+The formulas live in python/voigt_post/couette.py (Couette, params, smoothed; perf/accuracy uses them
 too); the same in C++ are in tests/elasticity/couette_exact.hpp (used by the test).
 
 Usage:
@@ -20,7 +20,9 @@ Usage:
   couette.py --probe FILE [-o PNG]   `voigt run` from rest: error per probe sample, last period plotted
   couette.py --smoothing 24 48 96    error of the smoothed-interface periodic state (kappa = 2 h,
                                      Eq. 4) against the sharp one: the error the test should see
-Defaults are the parameters of elastic_couette.yaml and tests/elasticity/test_couette.cpp.
+The parameters: with --probe, the scene record of the run that wrote FILE (its folder); else,
+or for a run without a record, the case's elastic_couette.yaml (the parameters of
+tests/elasticity/test_couette.cpp too). --rho_s, --G, ... override them.
 """
 import argparse
 import glob
@@ -28,8 +30,8 @@ import os
 
 import numpy as np
 
-from voigt_post import series
-from voigt_post.couette import P, Couette, smoothed
+from voigt_post import scene_record, series
+from voigt_post.couette import SCENE, Couette, case_params, params, smoothed
 
 
 def check(c):
@@ -69,10 +71,14 @@ def main():
     ap.add_argument("--probe", help="probe_profile.csv of `voigt run elastic_couette.yaml` (started from rest): "
                                     "error per sample, and the last period against the analytic state")
     ap.add_argument("-o", "--out", help="PNG (default: profiles.png beside this script with --csv, else analytic.png)")
-    for k, v in P.items():
-        ap.add_argument("--" + k, type=float, default=v)
+    defaults = case_params()
+    for k in defaults:
+        ap.add_argument("--" + k, type=float, help="default: the scene's")
     args = ap.parse_args()
-    c = Couette(**{k: getattr(args, k) for k in P})
+    if args.probe:   # the run's own parameters (its scene record, with every --set it ran)
+        run = os.path.dirname(os.path.abspath(args.probe))
+        defaults = params(scene_record.scene_or(run, SCENE, "couette.py"))
+    c = Couette(**{k: v if getattr(args, k) is None else getattr(args, k) for k, v in defaults.items()})
     if args.out is None:
         args.out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "profiles.png" if args.csv else "analytic.png")
     if args.check:

@@ -10,6 +10,10 @@ extrapolates to the axis with y(0) = (9 y(h/2) - y(3h/2)) / 8 (the interface
 is even about the axis), exactly as tests/levelset/test_rayleigh_taylor.cpp.
 Prints t*, t_T, and the displacements from y = 2, and writes tips.csv into
 each OUTDIR. Several OUTDIRs (e.g. two resolutions) share one plot.
+The set-up's numbers (wavelength H, the unperturbed interface y = 2H, Atwood
+number A and g, so t_T = t sqrt(A g / H); the densities and the domain of the
+snapshots) come from each OUTDIR's scene record (scene.yaml); a run from
+before records (2026-12-02) is read as the case's rayleigh_taylor.yaml.
 
 Reference curves (displacements from 2H in units of H against t_T), read off
 digitised figures at every 0.25:
@@ -27,8 +31,10 @@ import sys
 
 import numpy as np
 
-from voigt_post import fields
+from voigt_post import fields, scene_record
 from voigt_post.xdmf import frames
+
+HERE = os.path.dirname(os.path.realpath(__file__))
 
 HE1999 = [  # t_T, bubble, spike
     (0.25, 0.113, -0.121), (0.50, 0.161, -0.165), (0.75, 0.213, -0.243), (1.00, 0.274, -0.348),
@@ -58,18 +64,31 @@ def tips(psi, h):
     return (9 * b[0] - b[1]) / 8, (9 * s[0] - s[1]) / 8
 
 
+def setup(outdir):
+    """The run's wavelength H, interface height y0, time unit sqrt(H / (A g)) (t_T = t / it),
+    light and heavy densities and domain (lo, hi), from its scene record."""
+    sc = scene_record.scene_or(outdir, os.path.join(HERE, "rayleigh_taylor.yaml"), "tips.py")
+    ls = scene_record.level_set(sc)
+    heavy, light = (float(scene_record.material(sc, n)["density"]) for n in (ls["phase"], sc["fluid"]))
+    A, g = (heavy - light) / (heavy + light), -float(sc["gravity"][1])
+    H = float(ls["shape"]["wavelength"])
+    return {"H": H, "y0": float(ls["shape"]["point"][1]), "unit": np.sqrt(H / (A * g)), "rho": (light, heavy),
+            "box": scene_record.extent(sc)}
+
+
 def analyse(outdir):
     fr = frames(outdir)
     h = fr[0].spacing[1]  # vertical cell size: the crossings are along y
+    su = setup(outdir)
     rows = []
     for t, path, *_ in fr:
         psi = fields.read(path, "psi")[0]  # [z, y, x] -> [y, x]
         b, s = tips(psi, h)
-        rows.append((t, t / np.sqrt(2), b - 2, s - 2))
+        rows.append((t, t / su["unit"], (b - su["y0"]) / su["H"], (s - su["y0"]) / su["H"]))
     rows = np.array(rows)
     np.savetxt(os.path.join(outdir, "tips.csv"), rows, delimiter=",", fmt="%.6f",
                header="t_star,t_T,bubble,spike", comments="")
-    return rows, h
+    return rows, h / su["H"]
 
 
 def main():
@@ -115,13 +134,16 @@ def main():
         import matplotlib.pyplot as plt
         d, rows, h = runs[0]
         fr = frames(d)
+        su = setup(d)
+        (x0, y0, _), (x1, y1, _) = su["box"]
         fig, axs = plt.subplots(1, 4, figsize=(8, 4.8), sharey=True)
         for ax, tT in zip(axs, (1.0, 1.5, 2.0, 2.5)):
-            t, path = min(fr, key=lambda f: abs(f.t / np.sqrt(2) - tT))[:2]
+            t, path = min(fr, key=lambda f: abs(f.t / su["unit"] - tT))[:2]
             rho = fields.read(path, "density")[0]
             full = np.hstack([rho[:, ::-1], rho, rho[:, ::-1]])  # mirror: one and a half wavelengths
-            ax.imshow(full, origin="lower", extent=[-0.5, 1.0, 0, 4], cmap="coolwarm", vmin=1, vmax=3)
-            ax.set_title(f"$t_T$ = {t / np.sqrt(2):.2f}", fontsize=9)
+            ax.imshow(full, origin="lower", extent=[2 * x0 - x1, 2 * x1 - x0, y0, y1], cmap="coolwarm",
+                      vmin=su["rho"][0], vmax=su["rho"][1])
+            ax.set_title(f"$t_T$ = {t / su['unit']:.2f}", fontsize=9)
             ax.set_xticks([0, 0.5])
         axs[0].set_ylabel("y [H]")
         fig.suptitle(f"density, h = 1/{round(1 / h)} (half wavelength computed, mirrored)", fontsize=9)

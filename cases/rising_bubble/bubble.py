@@ -13,7 +13,8 @@ timeseries.csv, against the reference groups (reference/), for cases/rising_bubb
 
 Quantities, per time step (solid_body's H-weighted measures of the psi > 0 phase, the bubble):
 centroid y = solid_cy, rise velocity = solid_vy, circularity = pi d_a / P_b = 2 sqrt(pi A) / P
-with A = volume_gas / L_z and P = interface_area / L_z (L_z the 2-D slab's depth).
+with A = volume_gas / L_z and P = interface_area / L_z (L_z the 2-D slab's depth; the box's
+width and height from the run's scene record, scene.yaml).
 Benchmark scalars: minimum circularity and its time, maximum rise velocity and its time (case
 2: the maxima before and after t = 1.5), centroid y at t = 3."""
 import argparse
@@ -23,6 +24,8 @@ import json
 import math
 import os
 import sys
+
+from voigt_post import scene_record
 
 HERE = os.path.dirname(os.path.realpath(__file__))
 REF = os.path.join(HERE, "reference")
@@ -39,11 +42,18 @@ def is3d(d):
     return json.load(open(os.path.join(d, "summary.json")))["grid"]["cells"][2] > 2
 
 
+def box(d):
+    """(lo, hi) of run DIR's domain (x y z), from its scene record."""
+    return scene_record.extent(scene_record.require(d, "bubble.py"))
+
+
 def series(d):
     """t, circularity (3-D: sphericity), centroid y, rise velocity of run DIR (lists)."""
     with open(os.path.join(d, "timeseries.csv")) as f:
         rows = list(csv.DictReader(f))
     three = is3d(d)
+    lo, hi = box(d)
+    section = (hi[0] - lo[0]) * (hi[1] - lo[1])   # the slab's cross-section: 1 x 2 in the benchmark
     t, c, y, v = [], [], [], []
     for r in rows:
         vg, vl, area = float(r["volume_gas"]), float(r["volume_liquid"]), float(r["interface_area"])
@@ -53,7 +63,7 @@ def series(d):
             y.append(float(r["solid_cy"]))
             v.append(float(r["solid_vy"]))
             continue
-        lz = (vg + vl) / 2.0  # the box is 1 x 2 x L_z
+        lz = (vg + vl) / section  # the box is section x L_z
         c.append(2 * math.sqrt(math.pi * vg / lz) / (area / lz))
         y.append(float(r["solid_cy"]))
         v.append(float(r["solid_vy"]))
@@ -122,9 +132,10 @@ def final_contour(d):
     import matplotlib.pyplot as plt
     full = h5py.File(files[-1], "r")["psi"]
     psi = full[full.shape[0] // 2 if full.shape[0] > 2 else 0]  # 3-D: the mid-plane z = 1/2
+    lo, hi = box(d)
     n = psi.shape[1]
-    x = (np.arange(n) + 0.5) / n
-    yy = (np.arange(psi.shape[0]) + 0.5) * 2.0 / psi.shape[0]
+    x = lo[0] + (np.arange(n) + 0.5) * (hi[0] - lo[0]) / n
+    yy = lo[1] + (np.arange(psi.shape[0]) + 0.5) * (hi[1] - lo[1]) / psi.shape[0]
     segs = plt.contour(x, yy, psi, [0]).allsegs[0]
     plt.close("all")
     seg = max(segs, key=len)

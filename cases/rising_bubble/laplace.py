@@ -16,7 +16,8 @@ import sys
 
 import h5py
 import numpy as np
-import yaml
+
+from voigt_post import scene_record
 
 
 def main():
@@ -24,15 +25,15 @@ def main():
     ap.add_argument("dir")
     ap.add_argument("--check", type=float)
     a = ap.parse_args()
-    scene = yaml.safe_load(open(os.path.join(a.dir, "scene.yaml")))
+    scene = scene_record.require(a.dir, "laplace.py")
     sigma = float(scene["surface_tension"]["sigma"])
-    phase = scene["level_set"]["phase"]
-    cells, lo, hi = scene["domain"]["cells"], scene["domain"]["lo"], scene["domain"]["hi"]
-    h = min((hi[d] - lo[d]) / cells[d] for d in range(3))
+    phase = scene_record.level_set(scene)["phase"]
+    cells, (lo, hi) = scene["domain"]["cells"], scene_record.extent(scene)
+    h = min(scene_record.spacing(scene))
     flat = [d for d in range(3) if cells[d] <= 2]
     rows = list(csv.DictReader(open(os.path.join(a.dir, "timeseries.csv"))))
     volume = float(rows[-1]["volume_" + phase])
-    shape = scene["level_set"].get("shape", {})
+    shape = scene_record.level_set(scene).get("shape", {})
     if shape.get("type") in ("sphere", "cylinder"):
         R, src = float(shape["radius"]), "the scene's"
     elif flat:

@@ -10,11 +10,14 @@ t1 the time the gap between the surfaces first falls below 0.4 R = 2 mm (a dista
 grid resolves), the rebound speed v_out = the largest opening speed (d(t + T/2) - d(t - T/2)) / T
 after that averaged speed turns from closing to opening, e = v_out / v_in, the minimum gap between the two zero levels (solid_gap_left_right,
 kernels/contact.hpp) in mm and in cells, and the largest volume drift of either body.
+R and the cell size h come from the run's scene record (scene.yaml: the first level set's
+sphere, the domain's x extent over its cells).
 """
 import argparse
 import csv
-import json
 import os
+
+from voigt_post import scene_record
 
 
 def analyse(run):
@@ -22,9 +25,9 @@ def analyse(run):
     t = [float(r["t"]) for r in rows]
     rel = [float(r["solid_left_vx"]) - float(r["solid_right_vx"]) for r in rows]  # > 0: closing
     gap = [float(r["solid_gap_left_right"]) for r in rows]
-    scene = json.load(open(os.path.join(run, "summary.json")))
-    cells = scene["grid"]["cells"] if "grid" in scene else None
-    h = 0.06 / cells[0] if cells else float("nan")
+    scene = scene_record.require(run, "collision.py")
+    h = scene_record.spacing(scene)[0]
+    R = float(scene_record.level_set(scene)["shape"]["radius"])
     drift = max(abs(float(r[c])) for r in rows for c in ("volume_drift_left", "volume_drift_right"))
     d = [float(r["solid_right_cx"]) - float(r["solid_left_cx"]) for r in rows]
     T = 0.010
@@ -34,15 +37,16 @@ def analyse(run):
         w = (x - t[i - 1]) / (t[i] - t[i - 1])
         return d[i - 1] + w * (d[i] - d[i - 1])
 
-    j = next(i for i in range(1, len(gap)) if gap[i] < 0.002)
-    t1 = t[j - 1] + (gap[j - 1] - 0.002) / (gap[j - 1] - gap[j]) * (t[j] - t[j - 1])
+    near = 0.4 * R   # 2 mm: a distance the coarsest grid resolves
+    j = next(i for i in range(1, len(gap)) if gap[i] < near)
+    t1 = t[j - 1] + (gap[j - 1] - near) / (gap[j - 1] - gap[j]) * (t[j] - t[j - 1])
     v_in = (dist(t1 - T) - dist(t1)) / T
     vbar = [(dist(x - T / 2) - dist(x + T / 2)) / T for x in t]  # closing speed, averaged over T
     ok = [q for q in range(len(t)) if T / 2 <= t[q] <= t[-1] - T / 2]
     c = next(q for q in ok if t[q] > t1 and vbar[q] < 0)  # the rebound starts
     v_out = max(-vbar[q] for q in ok if q >= c)
     k = min(range(j, min(len(t), c + 1)), key=lambda i: gap[i])  # the smallest gap of the collision
-    return {"run": run, "h": h, "R_cells": 0.005 / h, "v_in": v_in, "v_out": v_out, "e": v_out / v_in,
+    return {"run": run, "h": h, "R_cells": R / h, "v_in": v_in, "v_out": v_out, "e": v_out / v_in,
             "gap_min": gap[k], "gap_cells": gap[k] / h, "t_gap": t[k], "drift": drift, "t": t, "rel": rel, "gap": gap}
 
 

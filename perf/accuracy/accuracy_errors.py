@@ -3,7 +3,7 @@ folder and its summary.json and returns {"error": ..., and more columns of resul
 import math
 import os
 
-from voigt_post import couette, fields, series
+from voigt_post import couette, fields, scene_record, series
 from voigt_post.formulas import taylor_green_rms
 
 
@@ -54,12 +54,13 @@ COUETTE_SAMPLES = 8               # probe samples per period
 def couette_error(run_dir, summary):
     """Elastic Couette from rest, COUETTE_PERIODS periods: u_x of the line probe at the nodes
     (x = z = h, y = 0 .. b, points = cells + 1) against the exact periodic (sharp-interface)
-    state couette.Couette(**couette.P).u(y, t), as `couette.py --probe` does per sample.
+    state couette.Couette(**couette.params(the run's scene record)).u(y, t), as `couette.py
+    --probe` does per sample (a run without a record: the case's elastic_couette.yaml).
     error: RMS over the nodes and the last period's 8 samples (t = (N - 1) T + T/8 .. N T;
     for a one-harmonic error that is the exact period mean), / V; error_max: max |e| / V over
     the same; error_prev: the RMS over the period before, to show how settled the run is."""
     import numpy as np
-    c = couette.Couette(**couette.P)
+    c = couette.Couette(**couette.params(scene_record.scene_or(run_dir, couette.SCENE, "accuracy")))
     raw = series.probe_array((run_dir, "profile"))
     times = np.unique(raw["t"])
 

@@ -104,7 +104,12 @@ class CouetteTest(unittest.TestCase):
     def setUp(self):
         from voigt_post import couette
         self.m = couette
-        self.c = couette.Couette(**couette.P)
+        self.c = couette.Couette(**couette.case_params())
+
+    def test_parameters_from_the_scene(self):
+        # elastic_couette.yaml's numbers, those of tests/elasticity/test_couette.cpp.
+        self.assertEqual(self.m.case_params(), dict(rho_s=1000.0, G=100.0, eta_s=0.0, rho_f=1000.0, mu=0.3, a=0.005,
+                                                    b=0.01, V=1e-4, omega=90.0))
 
     def test_boundary_and_interface_conditions(self):
         c = self.c

@@ -9,13 +9,38 @@ y = b moves as V sin(omega t). u(y, t) = Im[U(y) exp(i omega t)] with
     B = A sin(k_s a),  mu k_f C = (G + i omega eta_s) k_s cos(k_s a) A / (i omega),  U(b) = V.
 The same formulas are in tests/elasticity/couette_exact.hpp (C++, used by the test);
 cases/elastic_couette/couette.py checks and plots them, perf/accuracy measures runs against them.
+The parameters come from a scene (params: a run's record, or case_params: the case's file).
 """
+import os
+
 import numpy as np
 
+from . import scene_record
 from .formulas import heaviside
+from .launch import REPO
 
-# The parameters of cases/elastic_couette/elastic_couette.yaml and tests/elasticity/test_couette.cpp.
-P = dict(rho_s=1000.0, G=100.0, eta_s=0.0, rho_f=1000.0, mu=0.3, a=0.005, b=0.01, V=1e-4, omega=90.0)
+SCENE = os.path.join(REPO, "cases", "elastic_couette", "elastic_couette.yaml")
+
+
+def params(scene):
+    """The keyword arguments of Couette for an elastic Couette scene (a dict): the solid of its
+    level set (density, shear modulus, Kelvin-Voigt viscosity, 0 when it has none) below the
+    plane y = a, the fluid above it, the gap b (the domain's height; y measured from its base)
+    and the wall y+ moving as V sin(omega t)."""
+    ls = scene_record.level_set(scene)
+    solid, fluid = scene_record.material(scene, ls["phase"]), scene_record.material(scene)
+    lo, hi = scene_record.extent(scene)
+    wall = scene["boundaries"]["y+"]
+    return dict(rho_s=float(solid["density"]), G=float(solid["shear_modulus"]),
+                eta_s=float(solid.get("viscosity", 0.0)), rho_f=float(fluid["density"]),
+                mu=float(fluid["viscosity"]), a=float(ls["shape"]["point"][1]) - lo[1], b=hi[1] - lo[1],
+                V=float(wall["velocity"][0]), omega=float(wall["oscillation"]["omega"]))
+
+
+def case_params():
+    """params() of the case's scene file (cases/elastic_couette/elastic_couette.yaml; the
+    parameters of tests/elasticity/test_couette.cpp too)."""
+    return params(scene_record.load(SCENE))
 
 
 class Couette:
