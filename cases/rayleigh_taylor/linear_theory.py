@@ -25,13 +25,16 @@ w(z) exp(i k x + n t), equal kinematic viscosities nu (He et al. 1999 set-up).
    real n.
 
 Usage: linear_theory.py [--re 256] [--atwood 0.5]   (a few minutes: dense eigenproblems)
-Prints growth rates in units sqrt(g/H) for kappa = 2 h at several h.
+Prints growth rates in units sqrt(g/H) for kappa = 2 h at several h. The defaults of Re and A
+are those of the case's scene, rayleigh_taylor.yaml (scene_defaults).
 """
 import argparse
+import os
 
 import numpy as np
 import scipy.linalg as sla
 
+from voigt_post import scene_record
 from voigt_post.formulas import heaviside  # (Eq. 4)
 
 
@@ -111,10 +114,23 @@ def diffuse(A, g, k, nu, kappa, Lz=1.0, N=1600):
     return real.max()
 
 
+def scene_defaults(path=os.path.join(os.path.dirname(os.path.realpath(__file__)), "rayleigh_taylor.yaml")):
+    """(Re, A) of the scene file PATH: Re = sqrt(g H) H / nu of its light fluid (H the
+    wavelength, g |gravity|), A = (rho_heavy - rho_light) / (rho_heavy + rho_light)."""
+    sc = scene_record.load(path)
+    ls = scene_record.level_set(sc)
+    heavy, light = scene_record.material(sc, ls["phase"]), scene_record.material(sc)
+    g, H = -float(sc["gravity"][1]), float(ls["shape"]["wavelength"])
+    nu = float(light["viscosity"]) / float(light["density"])
+    rh, rl = float(heavy["density"]), float(light["density"])
+    return float(np.sqrt(g * H) * H / nu), (rh - rl) / (rh + rl)
+
+
 if __name__ == "__main__":
+    re, atwood = scene_defaults()
     ap = argparse.ArgumentParser()
-    ap.add_argument("--re", type=float, default=256.0, help="Re = sqrt(g H) H / nu")
-    ap.add_argument("--atwood", type=float, default=0.5)
+    ap.add_argument("--re", type=float, default=re, help="Re = sqrt(g H) H / nu (default: the scene's, %(default)g)")
+    ap.add_argument("--atwood", type=float, default=atwood, help="default: the scene's, %(default)g")
     args = ap.parse_args()
     A, g, H = args.atwood, 1.0, 1.0
     k = 2 * np.pi / H
