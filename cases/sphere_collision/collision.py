@@ -21,7 +21,8 @@ from voigt_post import scene_record
 
 
 def analyse(run):
-    rows = list(csv.DictReader(open(os.path.join(run, "timeseries.csv"))))
+    with open(os.path.join(run, "timeseries.csv")) as f:
+        rows = list(csv.DictReader(f))
     t = [float(r["t"]) for r in rows]
     rel = [float(r["solid_left_vx"]) - float(r["solid_right_vx"]) for r in rows]  # > 0: closing
     gap = [float(r["solid_gap_left_right"]) for r in rows]

@@ -94,6 +94,10 @@ class PorousTableTest(unittest.TestCase):
             self.assertIn("0.1 Pa/m per Pa, intercept 50 Pa/m, R^2 = 1.000", out)
             self.assertIn("results.csv `rigid_50x150x50`, approximate projection, to t = 1 s): section-averaged "
                           "18.0 Pa/m, midline 38.2 Pa/m (9000 steps, 9999 s)", out)
+            # With the case's packing.json: Ergun at its voidages, the gas of porous_bed.yaml.
+            out = script("cases/porous_bed/table.py", "--results", res, "--ledger", led).stdout
+            e = 0.4692954976092759   # packing.json voidage_written.interior
+            self.assertIn("%.1f Pa/m (e = %.3f, interior)" % (ergun.gradient(e, **flow), e), out)
 
     def test_grid_cost_pairs_the_grids(self):
         # grid_cost.py: a modulus's finished runs on the two grids, of one model and tag only.
@@ -112,6 +116,11 @@ class PorousTableTest(unittest.TestCase):
             self.assertEqual({mu: sorted(g) for mu, g in got.items()},
                              {100: ["25x75x25", "50x150x50"], 250: ["50x150x50"]})
             self.assertEqual(grid_cost.cells("25x75x25"), 46875)
+            png = os.path.join(tmp, "cost.png")
+            text = script("cases/porous_bed/grid_cost.py", "-o", png, "--results", res).stdout
+            self.assertIn("| +global+exact | 100 | 25x75x25 | 4.69e+06 | 100 | 1 | 1 | 50 | 1 |", text)
+            self.assertIn("| +global | 100 | 50x150x50 |", text)
+            self.assertTrue(os.path.exists(png))
 
     def test_outlet_stats_reads_the_last_y_plane(self):
         # outlet.py: arrays are stored (z, y, x, 3); the outlet is the last y plane, backflow u_y < 0.

@@ -3,6 +3,7 @@ to t = 0.03 s (about 1 s each): plots.py (voigt_post/porous_bed.py: a run's dige
 same numbers as its folder, Figs. 4-6, the table and results.csv row, so figures outlive the
 machine a run was on), outlet.py and band_speeds.py. VOIGT names the binary."""
 import os
+import shutil
 import subprocess
 import tempfile
 import unittest
@@ -92,6 +93,31 @@ class Digest(unittest.TestCase):
         line = [x for x in text_dir.splitlines() if x.startswith("rigid bed")]
         self.assertEqual(len(line), 1)
         self.assertIn(line[0], text_dig)
+
+    def test_outlet(self):
+        text = script("cases/porous_bed/outlet.py", self.runs[0][1], self.runs[1][1]).stdout.splitlines()
+        self.assertEqual(len(text), 6)                                            # three lines per run
+        self.assertRegex(text[0], r"^mu100_extend\+global\+exact_10x30x10: \d+ steps, section gradient -?[\d.]+ Pa/m, "
+                                  r"centroid rise -?[\d.]+ mm$")
+        self.assertEqual(text[2].count("/"), 2 * 4)                               # outputs at t = 0, 0.01, 0.02, 0.03
+        self.assertNotEqual(script("cases/porous_bed/outlet.py", check=False).returncode, 0)   # usage
+
+    def test_band_speeds(self):
+        # The bed's last output and the rigid bed's (no psi: the packing's spheres stand in);
+        # the grid, densities and smoothing from the scene record beside the file.
+        for run, what in ((self.runs[0][1], "psi"), (self.rigid, "spheres")):
+            path = sorted(f for f in os.listdir(run) if f.startswith("fields_"))[-1]
+            r = script("cases/porous_bed/band_speeds.py", os.path.join(run, path))
+            head, rows = r.stdout.splitlines()[0], [x for x in r.stdout.splitlines() if x.startswith("| (")]
+            self.assertRegex(head, r"bed interior, \d+ nodes; max speed [\d.e+-]+ m/s$", what)
+            self.assertTrue(rows, what)
+            self.assertEqual(sum(int(x.split(" | ")[1]) for x in rows), int(head.split("bed interior, ")[1].split()[0]))
+            self.assertNotIn("no scene record", r.stderr)
+        # A file copied out of its run: read as the case's scene (the paper's grid), said on stderr.
+        alone = os.path.join(self.tmp.name, "alone.h5")
+        shutil.copy(os.path.join(self.runs[0][1], "fields_000000.h5"), alone)
+        r = script("cases/porous_bed/band_speeds.py", alone, check=False)
+        self.assertIn("no scene record", r.stderr)
 
     def test_digest_refuses_a_time(self):
         d = os.path.join(self.tmp.name, "x.npz")

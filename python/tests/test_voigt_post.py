@@ -8,8 +8,20 @@ import shutil
 import subprocess
 import unittest
 
+import voigt_post
 from voigt_post import scene_record, xdmf
-from run_fixture import RunFixture
+from run_fixture import PACKAGE, RunFixture, script
+
+
+class PackageTest(unittest.TestCase):
+    def test_imported_from_this_checkout(self):
+        # scripts/setup's voigt.pth (or pip install -e python, or PYTHONPATH) names this checkout's
+        # python/; another checkout's package would test that one's code.
+        here = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
+        self.assertEqual(os.path.realpath(PACKAGE), here,
+                         "voigt_post from %s: rerun scripts/setup here or set PYTHONPATH=%s" % (voigt_post.__file__, here))
+        r = script("cases/runs.py", "seconds", "1m", cwd="/")     # a case script from any directory
+        self.assertEqual(r.stdout, "60\n")
 
 
 class XdmfTest(RunFixture):
