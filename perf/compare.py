@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """perf/compare REV: build git revision REV (A) and the working tree (B, uncommitted changes
 included) and run both on the same scenes, interleaved A, B, A, B, ...; report the median
 seconds per step, cell-steps per second, Poisson iterations and the per-stage split of each,

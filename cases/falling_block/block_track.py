@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Block diagnostics from a falling_block run's HDF5 output (Python 3 + numpy, h5py or h5dump:
 python/voigt_post/fields.py; python3-yaml for the run's scene record, unless --cylinder is given).
 

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The Laplace jump of a static-drop run (static_drop.yaml or any drop scene with output of
 pressure and psi): the mean pressure beyond 4 cells inside (psi > 4 h) minus that beyond 4
 cells outside, from the last fields file, against sigma / R (2-D: an axis of at most 2 cells)
