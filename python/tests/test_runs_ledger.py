@@ -119,19 +119,20 @@ class Ledger(unittest.TestCase):
 
     def test_run_id_says_which_projection(self):
         scene = os.path.join(self.dir.name, "s.yaml")
-        for body, sets, tag in [("projection:\n  operator: approximate\n  tolerance: 1e-6\n", [], "+settled"),
-                                ("projection:\n  # note\n\n  operator: exact\n", [], "+exact+balanced+settled"),
-                                ("time: {end: 1}\n", [], "+exact+balanced+settled"),  # Voigt's default operator
-                                ("projection:\n  tolerance: 1e-3\nother:\n  operator: approximate\n", [], "+exact+balanced+settled"),
-                                ("projection:\n  operator: approximate\n", ["projection.operator=exact"], "+exact+balanced+settled"),
-                                ("time: {end: 1}\n", ["projection.hydrostatic=none"], "+exact+settled"),  # issue 50 off
-                                ("time: {end: 1}\n", ["reinit.zone_tolerance=0"], "+exact+balanced"),
-                                ("projection:\n  operator: exact\n", ["projection.operator=approximate"], "+settled")]:
+        for body, sets, tag in [("projection:\n  operator: approximate\n  tolerance: 1e-6\n", [], "+settled+surface"),
+                                ("projection:\n  # note\n\n  operator: exact\n", [], "+exact+balanced+settled+surface"),
+                                ("time: {end: 1}\n", [], "+exact+balanced+settled+surface"),  # Voigt's default operator
+                                ("projection:\n  tolerance: 1e-3\nother:\n  operator: approximate\n", [], "+exact+balanced+settled+surface"),
+                                ("projection:\n  operator: approximate\n", ["projection.operator=exact"], "+exact+balanced+settled+surface"),
+                                ("time: {end: 1}\n", ["projection.hydrostatic=none"], "+exact+settled+surface"),  # issue 50 off
+                                ("time: {end: 1}\n", ["reinit.zone_tolerance=0"], "+exact+balanced+surface"),
+                                ("time: {end: 1}\n", ["level_set.surface_velocity=flow"], "+exact+balanced+settled"),  # issue 53 off
+                                ("projection:\n  operator: exact\n", ["projection.operator=approximate"], "+settled+surface")]:
             with open(scene, "w") as f:
                 f.write("domain:\n  cells: [4, 8, 4]\n" + body)
             self.assertEqual(run_ids.tagged_model("extend", sets, scene), "extend+global" + tag, body)
-        self.assertEqual(run_ids.run_id("100", run_ids.tagged_model("extend", [], scene), "4x8x4"), "mu100_extend+global+exact+balanced+settled_4x8x4")
-        self.assertEqual(run_ids.tagged_model("extend", ["level_set.volume_correction=none"]), "extend+none+settled")
+        self.assertEqual(run_ids.run_id("100", run_ids.tagged_model("extend", [], scene), "4x8x4"), "mu100_extend+global+exact+balanced+settled+surface_4x8x4")
+        self.assertEqual(run_ids.tagged_model("extend", ["level_set.volume_correction=none"]), "extend+none+settled+surface")
 
     def test_durations(self):
         for text, s in [("3h", 10800), ("170m", 10200), ("3600s", 3600), ("02:50:00", 10200)]:
@@ -147,7 +148,7 @@ class Ledger(unittest.TestCase):
             f.write("domain:\n  cells: [4, 8, 4]\nprojection:\n  operator: approximate\n")
         run = lambda *a, **k: script("cases/runs.py", *a, **k).stdout  # noqa: E731
         self.assertEqual(run("id", scene, "100", "extend", "domain.cells=[6,6,6]"),
-                         "mu100_extend+global+settled_6 6x6x6 extend+global+settled\n")
+                         "mu100_extend+global+settled+surface_6 6x6x6 extend+global+settled+surface\n")
         self.assertEqual(run("seconds", "2h30m"), "9000\n")
         self.assertIn("is not a duration", script("cases/runs.py", "seconds", "soon", check=False).stderr)
         self.assertEqual(run("state", self.dir.name), "new\n")

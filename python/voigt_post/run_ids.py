@@ -32,7 +32,7 @@ def tagged_model(model, sets, scene=None):
     default since 2026-12-03) or "integrate+none" (rows from before hold the bare name), and
     "+exact" when the run projects with the exact operator (issue 19; every paper-scene run
     before 2026-12-05 used the approximate one, and their ids carry no projection tag), then
-    "+balanced" (issue 50)."""
+    "+balanced" and "+settled" (issue 50) and "+surface" (issue 53)."""
     corr = "global"
     for s in sets:
         if s.startswith("level_set.volume_correction="):
@@ -46,6 +46,10 @@ def tagged_model(model, sets, scene=None):
     # smoothing-zone cells keep their advected values. Earlier runs carry no tag.
     if not any(s.strip() in ("reinit.zone_tolerance=0", "reinit.zone_tolerance=0.0") for s in sets):
         tag += "+settled"
+    # "+surface": level_set.surface_velocity: solid, the default since 2026-12-08 (issue 53): the
+    # solid's surface moves with the solid's velocity. Earlier runs carry no tag.
+    if not any(s.strip() == "level_set.surface_velocity=flow" for s in sets):
+        tag += "+surface"
     return "%s+%s%s" % (model, corr, tag)
 
 

@@ -67,7 +67,7 @@ python3 -c "import sys; sys.exit(not 0 < float(sys.argv[1]) < 0.13)" "$t1" || fa
 run_dir=$(ls -d "$WORK"/out/*/)
 run_dir=${run_dir%/}
 late_job() {
-  bash -c 'set -euo pipefail; . "$1/cases/study.sh"; out=$(dirname "$2"); id=$(basename "$2"); py=python3
+  bash -c 'set -euo pipefail; . "$1/cases/study.sh"; out=$(dirname "$2"); id=$(basename "$2"); py=/usr/bin/python3
            runs=$1/cases/runs.py; ledger=$5; deadline=""; ranks=1; launch=(); voigt=$6
            study_scene=$1/cases/falling_block/falling_block.yaml; declare -A study_listed=([$id]=$4)
            study_held_ids=(); study_one "$id" "$3"; echo "rc=$rc"' _ "$SRC" "$run_dir" "$@"

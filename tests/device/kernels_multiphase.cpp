@@ -1,9 +1,11 @@
 // Device check, fifth part (see kernels_all.cpp): several level sets (kernels/multiphase.hpp,
-// kernels/contact.hpp, kernels/levelset.hpp blendOver). The level sets are fill()'s psi and
+// kernels/contact.hpp, kernels/levelset.hpp blendOver) and a solid's surface velocity
+// (kernels/surface_velocity.hpp). The level sets are fill()'s psi and
 // a second one, psi shifted by 1.5 h with its sign turned (a body facing the first).
 #include "kernels/contact.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/multiphase.hpp"
+#include "kernels/surface_velocity.hpp"
 #include "check.hpp"
 
 namespace voigt {
@@ -45,6 +47,22 @@ void multiphase(const Grid& g, Fields& f) {
   const VecField bu{mk(g, "body_u"), mk(g, "body_v"), mk(g, "body_w")};
   multiphase::setBodyVelocity(b, kappa, 0.2, -0.1, 0.05, bu, nodeRange(g));
   put("setBodyVelocity", sumAbs(bu, nodeRange(g)));
+  // A solid's surface velocity (kernels/surface_velocity.hpp): fill()'s velocity extended into
+  // the fluid half of psi's zone, with one node's x component prescribed.
+  const Field pn = mk(g, "psi_node");
+  surface_velocity::nodeLevels(f.psi, pn, nodeRange(g, 1));
+  put("nodeLevels", sumAbs(pn, nodeRange(g, 1)));
+  const IntList layer("layer", size_t(g.ext[0]) * g.ext[1] * g.ext[2]);
+  const int nLayer = surface_velocity::listLayer(g, pn, -(kappa + h), nodeRange(g), layer);
+  put("listLayer", nLayer), put("listLayer.list", sumList(layer, nLayer));
+  IntField mask("sv_mask", g.ext[0], g.ext[1], g.ext[2]);
+  const int n0 = g.ext[0] / 2;
+  for_each3("sv_mask", all, KOKKOS_LAMBDA(int i, int j, int k) { mask(i, j, k) = i == n0 ? 1 : 0; });
+  const VecField sv{mk(g, "sv_u"), mk(g, "sv_v"), mk(g, "sv_w")};
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(sv.c[c], f.u.c[c]), Kokkos::deep_copy(bu.c[c], f.u.c[c]);
+  surface_velocity::sweep(g, pn, mask, sv, bu, layer, nLayer);
+  surface_velocity::sweep(g, pn, mask, bu, sv, layer, nLayer);
+  put("surfaceVelocitySweep", sumAbs(sv, nodeRange(g)));
 }
 
 } // namespace check

@@ -102,6 +102,12 @@ void LevelSet::configure(const Scene& s, const Published& pub) {
     // series resistance of the two fluids to a shear across the zone (cases/rising_bubble/README.md).
     l.harmonicMu = ls.choice("viscosity_blend", "linear", {"linear", "harmonic"}) == "harmonic";
     if (l.harmonicMu && !(l.mu > 0 && muF_ > 0)) ls.fail("viscosity_blend", "harmonic needs both phases' viscosity > 0");
+    // surface_velocity (kernels/surface_velocity.hpp): a solid body's surface moves with the solid.
+    const bool flowing = std::find(s.effects.begin(), s.effects.end(), "navier_stokes") != s.effects.end();
+    l.surfaceSolid = ls.choice("surface_velocity", l.info.solid && flowing ? "solid" : "flow", {"solid", "flow"}) == "solid";
+    if (l.surfaceSolid && !l.info.solid)
+      ls.fail("surface_velocity", "solid needs a solid phase (a material with a shear modulus); '" + l.info.phase + "' is a fluid");
+    if (l.surfaceSolid && !flowing) ls.fail("surface_velocity", "solid needs navier_stokes (a computed flow)");
     ls.finish();
     ls_.push_back(std::move(l));
   }
@@ -117,6 +123,11 @@ void LevelSet::declareFields(FieldStore& f) const {
   if (!single()) f.declareDerived("level_set_cover", Centring::Cell, 1, name());
   if (hides_)
     for (const char* n : {"level_set_known", "level_set_known_tmp"}) f.declareDerived(n, Centring::Cell, 1, name());
+  if (std::any_of(ls_.begin(), ls_.end(), [](const LevelSetInstance& l) { return l.surfaceSolid; })) {
+    f.declareDerived("surface_velocity", Centring::Node, 3, name());
+    f.declareDerived("surface_velocity_tmp", Centring::Node, 3, name());
+    f.declareDerived("psi_node", Centring::Node, 1, name());
+  }
 }
 
 void LevelSet::refreshGhosts(State& st, const Field& f) const {
@@ -133,6 +144,8 @@ void LevelSet::setup(State& st) {
   }
   updateBoxes(st, true);
   hideUnderSolids(st);
+  const Grid& g = st.grid;
+  if (st.fields.allocated("surface_velocity")) layer_ = IntList("surface_velocity_layer", size_t(g.ext[0]) * g.ext[1] * g.ext[2]);
   for (auto& l : ls_)
     if (l.moving) {
       multiphase::setBodyVelocity(st.fields.scalar(l.info.field), l.info.geometry.kappa(st.grid), l.velocity[0],
@@ -196,7 +209,11 @@ void LevelSet::loadState(const nlohmann::json& j) {
 
 void LevelSet::registerTasks(Pipeline& p) {
   p.add(Stage::Properties, name(), "density and viscosity from H(psi), Eq. (2)-(4)", [this](State& st) { blend(st); });
-  p.add(Stage::Advection, name(), "psi: SSP-RK2 + MUSCL/KT, Eq. (1)", [this](State& st) { advect(st); });
+  const bool surface = std::any_of(ls_.begin(), ls_.end(), [](const LevelSetInstance& l) { return l.surfaceSolid; });
+  p.add(Stage::Advection, name(),
+        surface ? "psi: SSP-RK2 + MUSCL/KT, Eq. (1); a solid's surface with the solid's velocity (surface_velocity: solid)"
+                : "psi: SSP-RK2 + MUSCL/KT, Eq. (1)",
+        [this](State& st) { advect(st); });
   if (hides_)
     p.add(Stage::Corrections, name(), "fluids' psi extended under solid bodies (kernels/multiphase.hpp)",
           [this](State& st) { hideUnderSolids(st); }, {"reinit"});
@@ -231,6 +248,7 @@ void LevelSet::summary(const State& st, nlohmann::json& j) const {
                          {"shift_total", l.shiftTotal},
                          {"volume_corrected", l.volume0 != 0 ? l.movedTotal / l.volume0 : 0.0},
                          {"viscosity_blend", l.harmonicMu ? "harmonic" : "linear"},
+                         {"surface_velocity", l.surfaceSolid ? "solid" : "flow"},
                          {"fast_marching",
                           {{"enabled", l.fastMarching},
                            {"initial_cells", l.fm.initialCells},

@@ -25,6 +25,10 @@ struct LevelSetInstance {
   bool harmonicMu = false;       // viscosity_blend: harmonic
   bool fastMarching = true;
   bool solid = false;
+  // surface_velocity: solid (a solid phase's default with navier_stokes): psi moves with the
+  // solid's velocity extended across the smoothing zone's fluid half (kernels/surface_velocity.hpp);
+  // flow: with the grid's velocity, Eq. (1) as printed.
+  bool surfaceSolid = false;
   // Several level sets: the global cells (indices [b, e)) where psi > -reach, reach = band + 1
   // cells (the re-initialisation's band and its far bound's neighbours; the elastic stress band,
   // kappa + 3 cells by default, lies within); every kernel of this level set runs on this box
@@ -72,6 +76,8 @@ class LevelSet : public Effect {
 
  private:
   void refreshGhosts(State& st, const Field& f) const;
+  // The velocity l's surface moves with (surface_velocity: solid), in "surface_velocity".
+  VecField surfaceVelocity(State& st, const LevelSetInstance& l);
   bool single() const { return ls_.size() == 1 && ls_[0].info.name.empty(); }
   void correctVolume(State& st, size_t i);
   // Several level sets: each fluid's psi extended under every solid body (kernels/multiphase.hpp),
@@ -89,6 +95,7 @@ class LevelSet : public Effect {
   std::vector<LevelSetInstance> ls_;
   double rhoF_ = 1, muF_ = 0; // the scene's fluid, where no level set is positive
   Limiter limiter_ = Limiter::MinMod;
+  IntList layer_;     // surface_velocity: the nodes of the zone's fluid half
   FluxScratch flux_; // face fluxes of the transport (kernels/advection_faces.hpp), shared
   bool open_[6] = {}; // faces through which a phase may leave (inflow/outflow)
 };
