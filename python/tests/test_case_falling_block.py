@@ -2,8 +2,7 @@
 110 steps, 1-2 s; the block falls onto the cylinder at ~0.06 s), fields every 0.02 s, its
 probes (left, centre, right every 0.005 s, impact every 0.00025 s). block_track.py, plots.py
 (and the events.py rules it prints), waves.py, render.py (VTK under xvfb; skipped without),
-grid_cost.py (on results.csv rows made from plots.py's). table.py: test_case_tables.py.
-wrinkles.py (another change's) has no test here yet."""
+grid_cost.py (on results.csv rows made from plots.py's), wrinkles.py. table.py: test_case_tables.py."""
 import csv
 import os
 import shutil
@@ -51,6 +50,19 @@ class FallingBlock(unittest.TestCase):
         self.assertEqual(len(probes), 21)                                        # every 0.005 s to 0.1
         self.assertAlmostEqual(float(probes[0]["top_centre"]) - float(probes[0]["bottom_centre"]), 0.02, delta=0.007)
         self.assertNotEqual(script("cases/falling_block/block_track.py", check=False).returncode, 0)   # usage
+
+    def test_wrinkles(self):
+        rows = csv_rows(script("cases/falling_block/wrinkles.py", self.out).stdout)
+        self.assertEqual(list(rows[0])[:9], ["run", "cells", "t", "top_mm", "bottom_mm", "bending_mm", "thickness_mm",
+                                             "top_cells", "bottom_cells"])
+        self.assertEqual(rows[0]["cells"], "16")
+        self.assertEqual(round(float(rows[0]["t"]), 6), 0)
+        # At t = 0 the faces are the superquadric's, flat to well under a cell over the window
+        # (the 48^3 start: 0.01 cells; here 3 cells of thickness, the edges' rounding nearer).
+        self.assertLess(float(rows[0]["top_cells"]), 0.1)
+        shares = [float(rows[0][k]) for k in rows[0] if k.startswith("top_power_") and k.endswith("_mm")]
+        self.assertAlmostEqual(sum(shares), 1.0, places=6)  # the wavelength bands cover the spectrum
+        self.assertNotEqual(script("cases/falling_block/wrinkles.py", check=False).returncode, 0)   # usage
 
     def test_plots_row_and_digest(self):
         png, res, dig = (os.path.join(self.tmp, n) for n in ("d.png", "results.csv", "digests"))
