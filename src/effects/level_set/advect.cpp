@@ -12,11 +12,11 @@
 #include <cmath>
 
 #include "effects/level_set/level_set.hpp"
+#include "effects/level_set/surface_velocity.hpp"
 #include "core/field_names.hpp"
 #include "kernels/advection_faces.hpp"
 #include "kernels/levelset.hpp"
 #include "kernels/multiphase.hpp"
-#include "kernels/surface_velocity.hpp"
 #include "kernels/reductions.hpp"
 
 namespace voigt {
@@ -50,29 +50,12 @@ void LevelSet::advect(State& st) {
   blend(st); // rho^{n+1}, mu^{n+1} for the momentum stage (header)
 }
 
-// surface_velocity: solid (kernels/surface_velocity.hpp): u, then Jacobi sweeps into the nodes
-// of the zone's fluid half, lo < psi_n <= 0 with lo = -(kappa + h): the half and the nodes
-// beyond it that the transport's face speeds read. Ghosts exchanged before each sweep reads them.
+// surface_velocity: solid: the solid's velocity extended across the zone's fluid half
+// (effects/level_set/surface_velocity.hpp).
 VecField LevelSet::surfaceVelocity(State& st, const LevelSetInstance& l) {
-  const Grid& g = st.grid;
-  const VecField u = st.fields.vector(field::velocity);
-  VecField v = st.fields.vector("surface_velocity"), w = st.fields.vector("surface_velocity_tmp");
-  const Field pn = st.fields.scalar("psi_node");
-  const double h = g.h[0], kappa = l.info.geometry.kappa(g);
   const Field psi = st.fields.scalar(l.info.field);
   refreshGhosts(st, psi); // reinit and the volume correction wrote psi since
-  surface_velocity::nodeLevels(psi, pn, nodeRange(g, 1));
-  const int n = surface_velocity::listLayer(g, pn, -(kappa + h), nodeRange(g), layer_);
-  const int sweeps = 2 * int(std::ceil((kappa / h + 1) / 2)); // a layer each; even: the result in v
-  const IntField mask = st.fields.integer(field::fixMask);
-  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(v.c[c], u.c[c]), Kokkos::deep_copy(w.c[c], u.c[c]);
-  for (int s = 0; s < sweeps; ++s) {
-    const VecField& from = s % 2 == 0 ? v : w;
-    if (s > 0) st.halo->exchange(from); // u's ghosts were current for the first
-    surface_velocity::sweep(g, pn, mask, from, s % 2 == 0 ? w : v, layer_, n);
-  }
-  st.halo->exchange(v);
-  return v;
+  return solidSurfaceVelocity(st, psi, l.info.geometry.kappa(st.grid), layer_);
 }
 
 void LevelSet::blend(State& st) {

@@ -7,6 +7,7 @@
 
 #include "core/boundary.hpp"
 #include "core/field_names.hpp"
+#include "effects/level_set/surface_velocity.hpp"
 #include "kernels/multiphase.hpp"
 #include "scene/reader.hpp"
 
@@ -123,11 +124,8 @@ void LevelSet::declareFields(FieldStore& f) const {
   if (!single()) f.declareDerived("level_set_cover", Centring::Cell, 1, name());
   if (hides_)
     for (const char* n : {"level_set_known", "level_set_known_tmp"}) f.declareDerived(n, Centring::Cell, 1, name());
-  if (std::any_of(ls_.begin(), ls_.end(), [](const LevelSetInstance& l) { return l.surfaceSolid; })) {
-    f.declareDerived("surface_velocity", Centring::Node, 3, name());
-    f.declareDerived("surface_velocity_tmp", Centring::Node, 3, name());
-    f.declareDerived("psi_node", Centring::Node, 1, name());
-  }
+  if (std::any_of(ls_.begin(), ls_.end(), [](const LevelSetInstance& l) { return l.surfaceSolid; }))
+    declareSurfaceVelocity(f, name());
 }
 
 void LevelSet::refreshGhosts(State& st, const Field& f) const {
